@@ -1,0 +1,39 @@
+# Thin wrappers over CMake and CTest. Each target first installs what is missing (Debian, apt).
+JOBS ?= $(shell nproc)
+SANITIZE ?= 0
+
+ifeq ($(SANITIZE),1)
+BUILD_DIR ?= build-sanitize
+CMAKE_FLAGS += -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTHETAD_SANITIZE=ON -DTHETAD_BUILD_BENCH=OFF
+else
+BUILD_DIR ?= build
+CMAKE_FLAGS += -DCMAKE_BUILD_TYPE=Release
+endif
+BENCH_DIR ?= build-bench
+OUT ?= out
+
+.PHONY: all deps build test demo bench clean
+
+all: build
+
+deps:
+	@bash scripts/install-deps.sh
+
+build: deps
+	cmake -S . -B $(BUILD_DIR) $(CMAKE_FLAGS)
+	cmake --build $(BUILD_DIR) -j $(JOBS)
+
+test: build
+	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
+
+demo: build
+	$(BUILD_DIR)/apps/thetad demo --out $(OUT)
+
+# Benchmarks are built separately with -march=native (see docs/performance.md).
+bench: deps
+	cmake -S . -B $(BENCH_DIR) -DCMAKE_BUILD_TYPE=Release -DTHETAD_NATIVE=ON -DTHETAD_BUILD_TESTS=OFF
+	cmake --build $(BENCH_DIR) -j $(JOBS)
+	bash bench/run.sh $(BENCH_DIR) $(OUT)/bench
+
+clean:
+	rm -rf build build-sanitize $(BENCH_DIR)

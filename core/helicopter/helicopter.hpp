@@ -1,0 +1,58 @@
+#pragma once
+
+#include <Eigen/Core>
+
+#include "core/helicopter/model_options.hpp"
+#include "core/helicopter/parameters.hpp"
+#include "core/helicopter/state.hpp"
+#include "core/sdc_plant.hpp"
+
+namespace thetad::heli {
+
+// What the air and the rotor wake do during one sample (held between samples by the simulator).
+// The controller's model uses the default: no wind, nominal induced velocities.
+struct Environment {
+  Eigen::Vector3d wind_ned = Eigen::Vector3d::Zero();         // inertial wind W_N, W_E, W_D (m/s)
+  Eigen::Vector3d wind_body_scale = Eigen::Vector3d::Ones();  // Table 1 #26-28 on u_w, v_w, w_w
+  double induced_main_scale = 1.0;                            // Table 1 #29 on V_imr
+  double induced_tail_scale = 1.0;                            // Table 1 #30 on V_itr
+};
+
+// The X-Cell 60 of the paper over the 18-state augmented vector (spec §1-§2, §6):
+// f(x, u) is Eqs. 1-9 and 26 with Appendix A and B; sdc(x, u) is Eqs. 29-30 with the rotor speed
+// taken from u's thrust, so F x + B u == f(x, u) exactly.
+class Helicopter final : public SdcPlant {
+ public:
+  explicit Helicopter(const Parameters& parameters = Parameters::nominal(),
+                      const ModelOptions& options = ModelOptions::resolved());
+
+  int state_dim() const override { return kStateDim; }
+  int input_dim() const override { return kInputDim; }
+
+  using SdcPlant::f;
+  using SdcPlant::sdc;
+  void f(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& u,
+         Eigen::Ref<Eigen::VectorXd> xdot) const override;
+  void sdc(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& u,
+           Eigen::Ref<Eigen::MatrixXd> F, Eigen::Ref<Eigen::MatrixXd> B) const override;
+
+  // F and B at a given main-rotor speed (what the controller's fixed point of spec §7.6 iterates on).
+  void sdc_at_rotor_speed(const Eigen::Ref<const Eigen::VectorXd>& x, double rotor_speed,
+                          Eigen::Ref<Eigen::MatrixXd> F, Eigen::Ref<Eigen::MatrixXd> B) const;
+
+  // Omega_mr for thrust T_mr at state x (Eqs. A4-A6 by bracketed zero-finding, or Omega_nom with
+  // the governor model). Throws thetad::Error when no root exists.
+  double rotor_speed(const Eigen::Ref<const Eigen::VectorXd>& x, double thrust) const;
+
+  const Parameters& parameters() const { return parameters_; }
+  const ModelOptions& options() const { return options_; }
+  const Environment& environment() const { return environment_; }
+  void set_environment(const Environment& environment) { environment_ = environment; }
+
+ private:
+  Parameters parameters_;
+  ModelOptions options_;
+  Environment environment_;
+};
+
+}  // namespace thetad::heli

@@ -1,0 +1,47 @@
+#pragma once
+
+#include <Eigen/Core>
+
+namespace thetad {
+
+// A plant in state-dependent-coefficient (SDC) form: xdot = f(x, u) = F(x) x + B(x) u, exactly.
+//
+// F and B may also depend on the input through quantities the plant derives from it (the
+// helicopter's rotor speed follows from the commanded thrust), so sdc() takes the input at which
+// those are evaluated: F(x; u) x + B(x; u) u == f(x, u) holds for that u. A plant whose
+// coefficients do not depend on u ignores it. Controllers that need the exact identity iterate
+// u -> sdc(x, u) -> u' to a fixed point.
+//
+// The writing overloads are the hot path: they fill caller-provided storage and allocate nothing.
+class SdcPlant {
+ public:
+  virtual ~SdcPlant() = default;
+
+  virtual int state_dim() const = 0;
+  virtual int input_dim() const = 0;
+
+  virtual void f(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& u,
+                 Eigen::Ref<Eigen::VectorXd> xdot) const = 0;
+
+  // Writes every entry of F (n x n) and B (n x m), zeros included.
+  virtual void sdc(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& u,
+                   Eigen::Ref<Eigen::MatrixXd> F, Eigen::Ref<Eigen::MatrixXd> B) const = 0;
+
+  Eigen::VectorXd f(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& u) const {
+    Eigen::VectorXd xdot(state_dim());
+    f(x, u, xdot);
+    return xdot;
+  }
+
+  struct Coefficients {
+    Eigen::MatrixXd F;
+    Eigen::MatrixXd B;
+  };
+  Coefficients sdc(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& u) const {
+    Coefficients c{Eigen::MatrixXd(state_dim(), state_dim()), Eigen::MatrixXd(state_dim(), input_dim())};
+    sdc(x, u, c.F, c.B);
+    return c;
+  }
+};
+
+}  // namespace thetad

@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# Installs, with apt-get, only the Debian 12 packages thetad needs that are missing.
+# Idempotent: when everything is present it touches nothing and needs no network.
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config
+  libeigen3-dev
+  coinor-libipopt-dev
+  libnlopt-cxx-dev
+  libgtest-dev libgmock-dev
+  libbenchmark-dev
+  liblapack-dev liblapacke-dev libslicot-dev
+  libyaml-cpp-dev libcli11-dev nlohmann-json3-dev
+  python3-matplotlib python3-scipy
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+
+if [ "$(id -u)" -ne 0 ]; then
+  sudo=sudo
+else
+  sudo=
+fi
+echo "install-deps: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -qq
+$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
