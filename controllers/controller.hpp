@@ -1,0 +1,21 @@
+#pragma once
+
+#include <memory>
+
+#include "core/sim/control_law.hpp"
+
+namespace thetad {
+
+// A controller thetad can fly and compare: a ControlLaw (name, reset, a non-allocating control
+// step that writes u) that can also be copied through its interface, so that `compare` and the
+// tuner can fly independent copies of a configured controller.
+//
+// The control step receives the measured 18-state (noisy; its integral entries hold the
+// integral of the measured position, s = 1) and the reference (commanded position and its
+// integral); see controllers/tracking.hpp for the V_track vector of Eq. (36) built from them.
+class Controller : public sim::ControlLaw {
+ public:
+  virtual std::unique_ptr<Controller> clone() const = 0;
+};
+
+}  // namespace thetad

@@ -1,0 +1,177 @@
+#include "core/helicopter/helicopter.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <string>
+
+#include "core/error.hpp"
+#include "core/helicopter/forces.hpp"
+#include "core/helicopter/rotor_speed.hpp"
+
+namespace thetad::heli {
+
+namespace {
+
+void require_size(const char* what, Eigen::Index rows, Eigen::Index cols, Eigen::Index want_rows, Eigen::Index want_cols) {
+  if (rows != want_rows || cols != want_cols) {
+    std::ostringstream message;
+    message << "helicopter: " << what << " is " << rows << "x" << cols << ", expected " << want_rows << "x" << want_cols;
+    throw Error(message.str());
+  }
+}
+
+// sin(x)/x, exact to double precision near 0 by its Taylor series (spec §6.5).
+double sinc(double x) { return std::abs(x) < 1e-4 ? 1.0 - x * x / 6.0 : std::sin(x) / x; }
+
+// Omega_mr for the applied thrust at the air data of the state (A4, or the governor of A-11).
+double rotor_speed_at(const Parameters& p, const ModelOptions& options, const AirData& air, double thrust) {
+  if (options.rotor_speed_model == ModelOptions::RotorSpeedModel::governor) {
+    if (!std::isfinite(thrust)) throw Error("helicopter: main-rotor thrust T_mr = " + std::to_string(thrust) + " N is not finite");
+    return p.omega_nom;
+  }
+  return main_rotor_speed(p, thrust, std::hypot(air.u_a, air.v_a), air.w_a, p.omega_nom);
+}
+
+// Eq. (29) and Eq. (30): every entry of spec §6.2 and §6.3, from the shared forces.
+void fill_sdc(const Parameters& p, const Forces& f, const Eigen::Ref<const Eigen::VectorXd>& x,
+              Eigen::Ref<Eigen::MatrixXd> F, Eigen::Ref<Eigen::MatrixXd> B) {
+  const AirData& a = f.air;
+  const double s = x[kS];
+  if (s == 0.0 || !std::isfinite(s)) {
+    throw Error("helicopter: bias state s = " + std::to_string(s) + " cannot carry the bias terms (col. 18 divides by s)");
+  }
+  const double m = p.mass, g = p.gravity, ixx = p.ixx, iyy = p.iyy, izz_eff = f.yaw_inertia;
+  const double pr = x[kP], qr = x[kQ], rr = x[kR];
+  F.setZero();
+  B.setZero();
+
+  F.block<3, 3>(kXp, kU) = a.rotation;  // rows 1-3: Eq. (1)
+  // Rows 4-6: omega-tilde (Eq. 3's -omega x V), gravity by sinc, biases in column 18.
+  F(kU, kV) = rr;
+  F(kU, kW) = -qr;
+  F(kV, kU) = -rr;
+  F(kV, kW) = pr;
+  F(kW, kU) = qr;
+  F(kW, kV) = -pr;
+  F(kU, kTheta) = -g * sinc(x[kTheta]);             // a4_8
+  F(kV, kPhi) = g * a.cos_theta * sinc(x[kPhi]);    // a5_7
+  F(kU, kS) = f.x_fus / (m * s);                                      // a4_18
+  F(kV, kS) = (f.y_fus + f.y_tr + f.y_vf) / (m * s);                  // a5_18
+  F(kW, kS) = f.z_fus / (m * s) + g * a.cos_phi * a.cos_theta / s;    // a6_18
+  // Rows 7-9: Eq. (5).
+  F(kPhi, kP) = 1.0;
+  F(kPhi, kQ) = a.sin_phi * a.tan_theta;
+  F(kPhi, kR) = a.cos_phi * a.tan_theta;
+  F(kTheta, kQ) = a.cos_phi;
+  F(kTheta, kR) = -a.sin_phi;
+  F(kPsi, kQ) = a.sin_phi * a.sec_theta;
+  F(kPsi, kR) = a.cos_phi * a.sec_theta;
+  // Rows 10-12: Eq. (4), row 12 in the explicit form of A-10.
+  F(kP, kQ) = rr * iyy / ixx;
+  F(kP, kR) = -qr * p.izz / ixx;
+  F(kP, kB1) = p.k_beta / ixx;
+  F(kP, kS) = (f.l_vf + f.l_tr) / (ixx * s);
+  F(kQ, kP) = -rr * ixx / iyy;
+  F(kQ, kR) = pr * p.izz / iyy;
+  F(kQ, kA1) = p.k_beta / iyy;
+  F(kQ, kS) = f.m_ht / (iyy * s);
+  F(kR, kP) = qr * ixx / izz_eff;
+  F(kR, kQ) = -pr * iyy / izz_eff;
+  F(kR, kS) = (f.n_vf + f.n_tr - f.q_mr - p.gear_tr * f.q_tr) / (izz_eff * s);
+  // Rows 13-14: Eq. (6), resolved form of §2.5.
+  F(kA1, kQ) = -1.0;
+  F(kA1, kA1) = -1.0 / p.tau_e;
+  F(kA1, kS) = f.a1_speed / s;
+  F(kB1, kP) = -1.0;
+  F(kB1, kB1) = -1.0 / p.tau_e;
+  F(kB1, kS) = f.b1_speed / s;
+  // Rows 15-17: Eq. (9); row 18: Eq. (26).
+  F(kXi, kXp) = 1.0;
+  F(kYi, kYp) = 1.0;
+  F(kZi, kZp) = 1.0;
+  F(kS, kS) = -p.k_s;
+
+  const double a1 = x[kA1], b1 = x[kB1];
+  B(kU, kTmr) = -a1 / m;
+  B(kV, kTmr) = b1 / m;  // b1/m, not the printed a1/m
+  B(kV, kPed) = p.y_ped_tr;
+  B(kW, kTmr) = -1.0 / m;
+  B(kP, kTmr) = p.h_mr * b1 / ixx;
+  B(kP, kPed) = p.h_tr * m * p.y_ped_tr / ixx;
+  B(kQ, kTmr) = p.h_mr * a1 / iyy;
+  B(kR, kPed) = -m * p.y_ped_tr * p.l_tr / izz_eff;
+  B(kA1, kCol) = f.a1_per_collective;
+  B(kA1, kLon) = f.a1_per_lon;
+  B(kB1, kCol) = f.b1_per_collective;
+  B(kB1, kLat) = f.b1_per_lat;
+}
+
+}  // namespace
+
+Helicopter::Helicopter(const Parameters& parameters, const ModelOptions& options)
+    : parameters_(parameters), options_(options) {}
+
+double Helicopter::rotor_speed(const Eigen::Ref<const Eigen::VectorXd>& x, double thrust) const {
+  require_size("state", x.rows(), x.cols(), kStateDim, 1);
+  return rotor_speed_at(parameters_, options_, air_data(environment_, x), thrust);
+}
+
+void Helicopter::f(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& u,
+                   Eigen::Ref<Eigen::VectorXd> xdot) const {
+  require_size("state", x.rows(), x.cols(), kStateDim, 1);
+  require_size("input", u.rows(), u.cols(), kInputDim, 1);
+  require_size("state derivative", xdot.rows(), xdot.cols(), kStateDim, 1);
+  const Parameters& p = parameters_;
+  const AirData air = air_data(environment_, x);
+  const double thrust = u[kTmr], pedal = u[kPed], collective = u[kCol], lon = u[kLon], lat = u[kLat];
+  const Forces f = evaluate_forces(p, options_, environment_, air, x, rotor_speed_at(p, options_, air, thrust));
+
+  const double m = p.mass, g = p.gravity;
+  const double uu = x[kU], vv = x[kV], ww = x[kW];
+  const double pr = x[kP], qr = x[kQ], rr = x[kR];
+  const double a1 = x[kA1], b1 = x[kB1];
+
+  xdot.segment<3>(kXp) = air.rotation * x.segment<3>(kU);  // Eq. (1)
+  // Eq. (3): main-rotor force (-T a1, T b1, -T), tail-rotor pedal force m Y_dped delta_ped.
+  xdot[kU] = vv * rr - ww * qr + f.x_fus / m - g * air.sin_theta - a1 * thrust / m;
+  xdot[kV] = ww * pr - uu * rr + (f.y_fus + f.y_tr + f.y_vf) / m + g * air.sin_phi * air.cos_theta +
+             p.y_ped_tr * pedal + b1 * thrust / m;
+  xdot[kW] = uu * qr - vv * pr + f.z_fus / m + g * air.cos_phi * air.cos_theta - thrust / m;
+  // Eq. (5).
+  xdot[kPhi] = pr + (qr * air.sin_phi + rr * air.cos_phi) * air.tan_theta;
+  xdot[kTheta] = qr * air.cos_phi - rr * air.sin_phi;
+  xdot[kPsi] = (qr * air.sin_phi + rr * air.cos_phi) * air.sec_theta;
+  // Eq. (4); the r-equation solved for r_dot with Q_e of B1.
+  const double hub_moment_per_flap = p.k_beta + thrust * p.h_mr;  // L_mr = (.) b1, M_mr = (.) a1
+  xdot[kP] = (qr * rr * (p.iyy - p.izz) + f.l_vf + f.l_tr + p.h_tr * m * p.y_ped_tr * pedal + hub_moment_per_flap * b1) / p.ixx;
+  xdot[kQ] = (pr * rr * (p.izz - p.ixx) + f.m_ht + hub_moment_per_flap * a1) / p.iyy;
+  xdot[kR] = (pr * qr * (p.ixx - p.iyy) + f.n_vf + f.n_tr - f.q_mr - p.gear_tr * f.q_tr - m * p.y_ped_tr * p.l_tr * pedal) /
+             f.yaw_inertia;
+  // Eq. (6), resolved form of §2.5.
+  xdot[kA1] = -qr - a1 / p.tau_e + f.a1_speed + f.a1_per_collective * collective + f.a1_per_lon * lon;
+  xdot[kB1] = -pr - b1 / p.tau_e + f.b1_speed + f.b1_per_collective * collective + f.b1_per_lat * lat;
+  xdot.segment<3>(kXi) = x.segment<3>(kXp);  // Eq. (9)
+  xdot[kS] = -p.k_s * x[kS];                 // Eq. (26)
+}
+
+void Helicopter::sdc(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& u,
+                     Eigen::Ref<Eigen::MatrixXd> F, Eigen::Ref<Eigen::MatrixXd> B) const {
+  require_size("state", x.rows(), x.cols(), kStateDim, 1);
+  require_size("input", u.rows(), u.cols(), kInputDim, 1);
+  require_size("F", F.rows(), F.cols(), kStateDim, kStateDim);
+  require_size("B", B.rows(), B.cols(), kStateDim, kInputDim);
+  const AirData air = air_data(environment_, x);
+  const double omega = rotor_speed_at(parameters_, options_, air, u[kTmr]);
+  fill_sdc(parameters_, evaluate_forces(parameters_, options_, environment_, air, x, omega), x, F, B);
+}
+
+void Helicopter::sdc_at_rotor_speed(const Eigen::Ref<const Eigen::VectorXd>& x, double rotor_speed,
+                                    Eigen::Ref<Eigen::MatrixXd> F, Eigen::Ref<Eigen::MatrixXd> B) const {
+  require_size("state", x.rows(), x.cols(), kStateDim, 1);
+  require_size("F", F.rows(), F.cols(), kStateDim, kStateDim);
+  require_size("B", B.rows(), B.cols(), kStateDim, kInputDim);
+  const AirData air = air_data(environment_, x);
+  fill_sdc(parameters_, evaluate_forces(parameters_, options_, environment_, air, x, rotor_speed), x, F, B);
+}
+
+}  // namespace thetad::heli

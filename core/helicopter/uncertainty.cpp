@@ -1,0 +1,82 @@
+#include "core/helicopter/uncertainty.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "core/error.hpp"
+
+namespace thetad::heli {
+
+namespace {
+
+// The percents of one noise category, placed by channel.
+template <std::size_t N>
+std::array<double, N> noise_percents(UncertaintyCategory category) {
+  std::array<double, N> percents{};
+  for (const auto& entry : kUncertaintyTable) {
+    if (entry.category == category) percents[static_cast<std::size_t>(entry.channel)] = entry.percent;
+  }
+  return percents;
+}
+
+}  // namespace
+
+std::string_view to_string(UncertaintyCategory category) {
+  switch (category) {
+    case UncertaintyCategory::measurement: return "measurement";
+    case UncertaintyCategory::actuator: return "actuator";
+    case UncertaintyCategory::wind_noise: return "wind noise";
+    case UncertaintyCategory::model_noise: return "model noise";
+    case UncertaintyCategory::parameter: return "parameter";
+  }
+  return "unknown";  // unreachable: every enumerator is handled above
+}
+
+std::array<double, kPhysicalStateDim> measurement_noise_percents() {
+  return noise_percents<kPhysicalStateDim>(UncertaintyCategory::measurement);
+}
+std::array<double, kInputDim> actuator_noise_percents() { return noise_percents<kInputDim>(UncertaintyCategory::actuator); }
+std::array<double, 3> wind_noise_percents() { return noise_percents<3>(UncertaintyCategory::wind_noise); }
+std::array<double, 2> induced_velocity_noise_percents() { return noise_percents<2>(UncertaintyCategory::model_noise); }
+
+PerturbedParameters perturbed_parameters(const Parameters& nominal, const ParameterDraw& xi) {
+  PerturbedParameters out{nominal, {}};
+  out.report.reserve(kUncertaintyCount);
+  std::size_t next = 0;
+  for (const auto& entry : kUncertaintyTable) {
+    UncertaintyReport row{entry.number, std::string(entry.name), entry.percent, entry.category, true, 0.0, 1.0};
+    if (entry.parameter != nullptr) {
+      const double x = xi[next++];
+      if (!(std::abs(x) <= 1.0)) {
+        std::ostringstream message;
+        message << "uncertainty draw for Table 1 #" << entry.number << " (" << entry.name << "): xi = " << x
+                << " is outside [-1, 1]";
+        throw Error(message.str());
+      }
+      row.per_sample = false;
+      row.xi = x;
+      row.factor = 1.0 + entry.percent / 100.0 * x;
+      out.parameters.*entry.parameter = nominal.*entry.parameter * row.factor;
+    }
+    out.report.push_back(std::move(row));
+  }
+  return out;
+}
+
+PerturbedParameters perturbed_parameters(const Parameters& nominal, std::mt19937_64& rng) {
+  ParameterDraw xi;
+  for (double& x : xi) {
+    // 53 random bits -> [0, 1) -> [-1, 1): identical on every standard library, unlike
+    // std::uniform_real_distribution.
+    x = 2.0 * std::ldexp(static_cast<double>(rng() >> 11), -53) - 1.0;
+  }
+  return perturbed_parameters(nominal, xi);
+}
+
+PerturbedParameters worst_case_parameters(const Parameters& nominal) {
+  ParameterDraw ones;
+  ones.fill(1.0);
+  return perturbed_parameters(nominal, ones);
+}
+
+}  // namespace thetad::heli

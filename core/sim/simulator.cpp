@@ -1,0 +1,421 @@
+#include "core/sim/simulator.hpp"
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <optional>
+#include <random>
+#include <utility>
+
+#include <nlohmann/json.hpp>
+
+#include "core/error.hpp"
+#include "core/helicopter/paper_weights.hpp"
+#include "core/helicopter/state.hpp"
+#include "core/helicopter/uncertainty.hpp"
+
+namespace thetad::sim {
+
+namespace {
+
+using heli::kInputDim;
+using heli::kStateDim;
+
+struct NameUnit {
+  const char* name;
+  const char* unit;
+};
+
+// Names and units of the 18 states and the 5 inputs, in index order (spec §1.4).
+constexpr std::array<NameUnit, kStateDim> kStateColumns = {{
+    {"x_p", "m"}, {"y_p", "m"}, {"z_p", "m"},
+    {"u", "m_per_s"}, {"v", "m_per_s"}, {"w", "m_per_s"},
+    {"phi", "rad"}, {"theta", "rad"}, {"psi", "rad"},
+    {"p", "rad_per_s"}, {"q", "rad_per_s"}, {"r", "rad_per_s"},
+    {"a1", "rad"}, {"b1", "rad"},
+    {"x_i", "m_s"}, {"y_i", "m_s"}, {"z_i", "m_s"},
+    {"s", "unitless"},
+}};
+constexpr std::array<NameUnit, kInputDim> kInputColumns = {{
+    {"T_mr", "N"}, {"delta_ped", "rad"}, {"delta_col", "rad"}, {"delta_lon", "rad"}, {"delta_lat", "rad"},
+}};
+
+std::vector<LogColumn> build_log_schema() {
+  // The row writer in simulate() appends the blocks in this order.
+  std::vector<LogColumn> columns{{"t", "s"}, {"x_c", "m"}, {"y_c", "m"}, {"z_c", "m"}};
+  for (const auto& [name, unit] : kStateColumns) columns.push_back({name, unit});
+  for (const auto& [name, unit] : kStateColumns) columns.push_back({std::string("meas_") + name, unit});
+  for (const auto& [name, unit] : kInputColumns) columns.push_back({std::string("cmd_") + name, unit});
+  for (const auto& [name, unit] : kInputColumns) columns.push_back({std::string("app_") + name, unit});
+  columns.push_back({"Omega_mr", "rad_per_s"});
+  columns.push_back({"wind_N", "m_per_s"});
+  columns.push_back({"wind_E", "m_per_s"});
+  columns.push_back({"wind_D", "m_per_s"});
+  columns.push_back({"compute", "ns"});
+  return columns;
+}
+
+std::string format_reason(const char* what, double value, double limit, const char* unit, double t) {
+  char buffer[200];
+  std::snprintf(buffer, sizeof buffer, "%s = %.6g %s exceeds %.6g %s at t = %.4f s", what, value, unit,
+                limit, unit, t);
+  return buffer;
+}
+
+// Why the state x at time t counts as diverged, or nothing.
+std::optional<std::string> divergence(const Eigen::VectorXd& x, const DivergenceLimits& limits, double t) {
+  using namespace heli;
+  if (!x.allFinite()) {
+    char buffer[80];
+    std::snprintf(buffer, sizeof buffer, "non-finite state at t = %.4f s", t);
+    return buffer;
+  }
+  if (std::abs(x[kPhi]) > limits.max_attitude)
+    return format_reason("roll |phi|", std::abs(x[kPhi]), limits.max_attitude, "rad", t);
+  if (std::abs(x[kTheta]) > limits.max_attitude)
+    return format_reason("pitch |theta|", std::abs(x[kTheta]), limits.max_attitude, "rad", t);
+  const char* rate_names[] = {"roll rate |p|", "pitch rate |q|", "yaw rate |r|"};
+  for (int i = 0; i < 3; ++i) {
+    if (std::abs(x[kP + i]) > limits.max_body_rate)
+      return format_reason(rate_names[i], std::abs(x[kP + i]), limits.max_body_rate, "rad/s", t);
+  }
+  const double speed = x.segment<3>(kU).norm();
+  if (speed > limits.max_speed) return format_reason("speed |(u, v, w)|", speed, limits.max_speed, "m/s", t);
+  if (x[kZp] > limits.max_ground_penetration)
+    return format_reason("ground penetration z_p", x[kZp], limits.max_ground_penetration, "m", t);
+  return std::nullopt;
+}
+
+std::string failure_reason(const char* source, const std::exception& error, double t) {
+  char buffer[80];
+  std::snprintf(buffer, sizeof buffer, "%s failed at t = %.4f s: ", source, t);
+  return buffer + std::string(error.what());
+}
+
+// Scratch vectors of the classical RK4 step, allocated once per run.
+struct Rk4Workspace {
+  Eigen::VectorXd k1, k2, k3, k4, stage;
+  explicit Rk4Workspace(Eigen::Index n) : k1(n), k2(n), k3(n), k4(n), stage(n) {}
+};
+
+void rk4_step(const heli::Helicopter& plant, const Eigen::VectorXd& u, double dt, Rk4Workspace& w,
+              Eigen::VectorXd& x) {
+  plant.f(x, u, w.k1);
+  w.stage = x + (0.5 * dt) * w.k1;
+  plant.f(w.stage, u, w.k2);
+  w.stage = x + (0.5 * dt) * w.k2;
+  plant.f(w.stage, u, w.k3);
+  w.stage = x + dt * w.k3;
+  plant.f(w.stage, u, w.k4);
+  x += (dt / 6.0) * (w.k1 + 2.0 * w.k2 + 2.0 * w.k3 + w.k4);
+}
+
+void validate(const SimulationSettings& settings, const Eigen::VectorXd& x0) {
+  if (!(settings.dt > 0.0) || !std::isfinite(settings.dt)) throw Error("simulate: dt must be positive and finite");
+  if (settings.controller_period_steps < 1) throw Error("simulate: controller_period_steps must be at least 1");
+  if (settings.log_every < 1) throw Error("simulate: log_every must be at least 1");
+  if (!(settings.duration >= settings.controller_period()) || !std::isfinite(settings.duration))
+    throw Error("simulate: duration must be finite and at least one controller period");
+  if (x0.size() != kStateDim)
+    throw Error("simulate: x0 has " + std::to_string(x0.size()) + " entries, the helicopter has " +
+                std::to_string(kStateDim));
+}
+
+struct ComputeTimeStatistics {
+  double mean = 0.0, median = 0.0, p99 = 0.0;
+};
+
+ComputeTimeStatistics statistics(std::vector<std::int64_t> samples) {
+  if (samples.empty()) return {};
+  std::sort(samples.begin(), samples.end());
+  const std::size_t n = samples.size();
+  double sum = 0.0;
+  for (const auto s : samples) sum += static_cast<double>(s);
+  const double median = n % 2 == 1 ? static_cast<double>(samples[n / 2])
+                                   : 0.5 * static_cast<double>(samples[n / 2 - 1] + samples[n / 2]);
+  // Nearest rank: the smallest sample with at least 99 % of the samples at or below it.
+  const auto rank = static_cast<std::size_t>(std::ceil(0.99 * static_cast<double>(n)));
+  return {sum / static_cast<double>(n), median, static_cast<double>(samples[std::max<std::size_t>(rank, 1) - 1])};
+}
+
+const char* to_string(RunStatus status) { return status == RunStatus::completed ? "completed" : "diverged"; }
+
+const char* to_string(WindGustSettings::Model model) {
+  return model == WindGustSettings::Model::held_white ? "held_white" : "gauss_markov";
+}
+
+const char* to_string(MeasurementNoiseOn on) {
+  return on == MeasurementNoiseOn::feedback_signal ? "feedback_signal" : "absolute_state";
+}
+
+nlohmann::ordered_json settings_json(const SimulationSettings& s) {
+  nlohmann::ordered_json j;
+  j["dt_s"] = s.dt;
+  j["controller_period_steps"] = s.controller_period_steps;
+  j["controller_period_s"] = s.controller_period();
+  j["log_every"] = s.log_every;
+  j["duration_s"] = s.duration;
+  j["parameter_uncertainty"] = s.parameter_uncertainty;
+  j["wind_gust"] = {{"enabled", s.wind_gust.enabled},
+                    {"model", to_string(s.wind_gust.model)},
+                    {"sigma_m_per_s", s.wind_gust.sigma},
+                    {"correlation_time_s", s.wind_gust.correlation_time}};
+  j["noise"] = {{"measurement", s.noise.measurement},
+                {"measurement_on", to_string(s.noise.measurement_on)},
+                {"actuator", s.noise.actuator},
+                {"wind_component", s.noise.wind_component},
+                {"induced_velocity", s.noise.induced_velocity}};
+  j["divergence_limits"] = {{"max_attitude_rad", s.limits.max_attitude},
+                            {"max_body_rate_rad_per_s", s.limits.max_body_rate},
+                            {"max_speed_m_per_s", s.limits.max_speed},
+                            {"max_ground_penetration_m", s.limits.max_ground_penetration}};
+  j["measure_compute_time"] = s.measure_compute_time;
+  return j;
+}
+
+template <typename Writer>
+void write_file(const std::filesystem::path& path, Writer&& write) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  if (!out) throw Error("cannot open " + path.string() + " for writing");
+  write(out);
+  out.close();
+  if (!out) throw Error("writing " + path.string() + " failed");
+}
+
+}  // namespace
+
+SimulationSettings SimulationSettings::ideal() {
+  SimulationSettings settings;
+  settings.parameter_uncertainty = false;
+  settings.wind_gust.enabled = false;
+  settings.noise.measurement = false;
+  settings.noise.actuator = false;
+  settings.noise.wind_component = false;
+  settings.noise.induced_velocity = false;
+  return settings;
+}
+
+const std::vector<LogColumn>& log_schema() {
+  static const std::vector<LogColumn> schema = build_log_schema();
+  return schema;
+}
+
+std::string csv_header() {
+  std::string header;
+  for (const auto& column : log_schema()) {
+    if (!header.empty()) header += ',';
+    header += column.header();
+  }
+  return header;
+}
+
+RunResult simulate(ControlLaw& law, const ReferenceTrajectory& reference, const Eigen::VectorXd& x0,
+                   const SimulationSettings& settings, const heli::Parameters& nominal,
+                   const heli::ModelOptions& options) {
+  using namespace heli;
+  validate(settings, x0);
+  const double period = settings.controller_period();
+  const auto samples = static_cast<std::int64_t>(std::llround(settings.duration / period));
+
+  std::mt19937_64 rng(settings.seed);
+  const PerturbedParameters drawn = perturbed_parameters(nominal, rng);
+  Helicopter plant(settings.parameter_uncertainty ? drawn.parameters : nominal, options);
+  const NoiseLevels levels = NoiseLevels::from_uncertainty_table();
+  WindGust gust(settings.wind_gust, period);
+  const Eigen::VectorXd state_weights = paper_state_weights();
+  const Eigen::VectorXd input_weights = paper_input_weights();
+
+  RunResult result;
+  RunSummary& summary = result.summary;
+  summary.controller = law.name();
+  summary.settings = settings;
+  summary.model_options = options.to_string();
+  if (settings.parameter_uncertainty) {
+    for (const auto& entry : drawn.report) {
+      if (entry.category == UncertaintyCategory::parameter) summary.parameter_factors.emplace_back(entry.name, entry.factor);
+    }
+  }
+  const auto columns = static_cast<std::int64_t>(log_schema().size());
+  result.log.values.reserve(static_cast<std::size_t>((samples + settings.log_every - 1) / settings.log_every * columns));
+  std::vector<std::int64_t> compute_ns;
+  compute_ns.reserve(static_cast<std::size_t>(samples));
+
+  Eigen::VectorXd x = x0;
+  Eigen::VectorXd measured(kStateDim), command(kInputDim), applied(kInputDim), v_track(kStateDim);
+  Rk4Workspace workspace(kStateDim);
+  SampleDraws draws;
+  PositionIntegral reference_integral, measured_integral, true_error_integral;
+  Eigen::Vector3d error_square_sum = Eigen::Vector3d::Zero();
+  Eigen::Matrix<double, kInputDim, 1> command_square_sum = Eigen::Matrix<double, kInputDim, 1>::Zero();
+
+  law.reset(x0, 0.0);
+  std::optional<std::string> failure = divergence(x, settings.limits, 0.0);
+  double t = 0.0;
+  for (std::int64_t k = 0; k < samples && !failure; ++k) {
+    t = static_cast<double>(k) * period;
+    draws.draw(rng);
+    const Eigen::Vector3d wind = gust.sample(x[kZp], draws.gust);
+    plant.set_environment(sample_environment(wind, draws, levels, settings.noise));
+    const Eigen::Vector3d position_command = reference.position(t);
+    measure(x, position_command, measured_integral.value, draws, levels, settings.noise, measured);
+
+    std::int64_t elapsed_ns = 0;
+    try {
+      if (settings.measure_compute_time) {
+        const auto start = std::chrono::steady_clock::now();
+        law.control(t, measured, Reference{position_command, reference_integral.value}, command);
+        const auto stop = std::chrono::steady_clock::now();
+        elapsed_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(stop - start).count();
+      } else {
+        law.control(t, measured, Reference{position_command, reference_integral.value}, command);
+      }
+    } catch (const Error& error) {
+      failure = failure_reason("controller", error, t);
+      break;
+    }
+    if (!command.allFinite()) {
+      failure = failure_reason("controller", Error("non-finite command"), t);
+      break;
+    }
+    apply_actuator_noise(command, draws, levels, settings.noise, applied);
+    double rotor_speed = 0.0;
+    try {
+      rotor_speed = plant.rotor_speed(x, applied[kTmr]);
+    } catch (const Error& error) {
+      failure = failure_reason("plant rotor speed", error, t);
+      break;
+    }
+
+    const Eigen::Vector3d error = x.segment<3>(kXp) - position_command;
+    v_track << error, x.segment<11>(kU), true_error_integral.value, 1.0;  // Eq. 36 on the true state
+    summary.cost += 0.5 * (v_track.cwiseAbs2().dot(state_weights) + command.cwiseAbs2().dot(input_weights)) * period;
+    error_square_sum += error.cwiseAbs2();
+    summary.max_tracking_error = summary.max_tracking_error.cwiseMax(error.cwiseAbs());
+    command_square_sum += command.cwiseAbs2();
+    compute_ns.push_back(elapsed_ns);
+    ++summary.controller_samples;
+
+    if (k % settings.log_every == 0) {
+      auto& row = result.log.values;
+      row.push_back(t);
+      row.insert(row.end(), position_command.begin(), position_command.end());
+      row.insert(row.end(), x.begin(), x.end());
+      row.insert(row.end(), measured.begin(), measured.end());
+      row.insert(row.end(), command.begin(), command.end());
+      row.insert(row.end(), applied.begin(), applied.end());
+      row.push_back(rotor_speed);
+      row.insert(row.end(), plant.environment().wind_ned.begin(), plant.environment().wind_ned.end());
+      row.push_back(static_cast<double>(elapsed_ns));
+    }
+
+    reference_integral.accumulate(position_command, period);
+    measured_integral.accumulate(measured.segment<3>(kXp), period);
+    true_error_integral.accumulate(error, period);
+
+    for (int step = 1; step <= settings.controller_period_steps && !failure; ++step) {
+      const double t_end = t + step * settings.dt;
+      try {
+        rk4_step(plant, applied, settings.dt, workspace, x);
+        failure = divergence(x, settings.limits, t_end);
+      } catch (const Error& error) {
+        failure = failure_reason("plant", error, t_end);
+      }
+      if (failure) t = t_end;
+    }
+  }
+
+  if (failure) {
+    summary.status = RunStatus::diverged;
+    summary.reason = *failure;
+    summary.end_time = t;
+  } else {
+    summary.end_time = static_cast<double>(samples) * period;
+  }
+  if (summary.controller_samples > 0) {
+    const auto n = static_cast<double>(summary.controller_samples);
+    summary.rms_tracking_error = (error_square_sum / n).cwiseSqrt();
+    summary.command_rms = (command_square_sum / n).cwiseSqrt();
+  }
+  const ComputeTimeStatistics timing = statistics(std::move(compute_ns));
+  summary.compute_ns_mean = timing.mean;
+  summary.compute_ns_median = timing.median;
+  summary.compute_ns_p99 = timing.p99;
+  return result;
+}
+
+void write_csv(const RunLog& log, std::ostream& out) {
+  out << csv_header() << '\n';
+  const std::size_t columns = log_schema().size();
+  // Shortest round-trip text: exact, and the same bytes for the same double on every run.
+  char buffer[32];
+  for (std::size_t i = 0; i < log.values.size(); ++i) {
+    const auto [end, status] = std::to_chars(buffer, buffer + sizeof buffer, log.values[i]);
+    out.write(buffer, end - buffer);
+    out.put((i + 1) % columns == 0 ? '\n' : ',');
+  }
+}
+
+std::string summary_json(const RunSummary& summary) {
+  nlohmann::ordered_json j;
+  const auto vector3 = [](const Eigen::Vector3d& v) { return nlohmann::ordered_json::array({v.x(), v.y(), v.z()}); };
+  j["controller"] = summary.controller;
+  j["seed"] = summary.settings.seed;
+  j["status"] = to_string(summary.status);
+  j["reason"] = summary.reason;
+  j["end_time_s"] = summary.end_time;
+  j["controller_samples"] = summary.controller_samples;
+  j["model_options"] = summary.model_options;
+  nlohmann::ordered_json factors = nlohmann::ordered_json::object();
+  for (const auto& [name, factor] : summary.parameter_factors) factors[name] = factor;
+  j["parameter_factors"] = factors;
+  j["settings"] = settings_json(summary.settings);
+  j["tracking_error_m"] = {{"axes", {"x", "y", "z"}},
+                           {"rms", vector3(summary.rms_tracking_error)},
+                           {"max", vector3(summary.max_tracking_error)}};
+  nlohmann::ordered_json effort;
+  effort["definition"] = "RMS of the commanded input per channel over the controller samples";
+  for (int i = 0; i < kInputDim; ++i) {
+    effort["rms"][std::string(kInputColumns[i].name) + "_" + kInputColumns[i].unit] = summary.command_rms[i];
+  }
+  j["control_effort"] = effort;
+  j["cost"] = {{"definition",
+                "J = 1/2 sum_k (V_track' Q V_track + u_cmd' R u_cmd) T_c, Eq. 32 with Q, R of Eqs. 33-34, "
+                "true V_track"},
+               {"J", summary.cost}};
+  j["compute_time_ns"] = {{"mean", summary.compute_ns_mean},
+                          {"median", summary.compute_ns_median},
+                          {"p99", summary.compute_ns_p99}};
+  return j.dump(2);
+}
+
+RunFiles write_run(const RunResult& result, const std::filesystem::path& directory, const std::string& stem) {
+  const RunFiles files{directory / (stem + ".csv"), directory / (stem + ".json")};
+  const std::filesystem::path csv_partial = directory / ("." + stem + ".csv.partial");
+  const std::filesystem::path json_partial = directory / ("." + stem + ".json.partial");
+  try {
+    write_file(csv_partial, [&](std::ostream& out) { write_csv(result.log, out); });
+    write_file(json_partial, [&](std::ostream& out) { out << summary_json(result.summary) << '\n'; });
+    std::filesystem::rename(csv_partial, files.csv);
+    try {
+      std::filesystem::rename(json_partial, files.json);
+    } catch (...) {
+      // The pair is the unit: a CSV without its summary must not look like a finished run.
+      std::error_code ignored;
+      std::filesystem::remove(files.csv, ignored);
+      throw;
+    }
+  } catch (const std::exception& error) {
+    std::error_code ignored;
+    std::filesystem::remove(csv_partial, ignored);
+    std::filesystem::remove(json_partial, ignored);
+    throw Error("write_run: could not write " + files.csv.string() + " and " + files.json.string() + ": " +
+                error.what());
+  }
+  return files;
+}
+
+}  // namespace thetad::sim

@@ -1,0 +1,374 @@
+#include "core/riccati.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/error.hpp"
+#include "tests/core/care_checks.hpp"
+
+namespace thetad {
+namespace {
+
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+using ::testing::HasSubstr;
+using testing::expect_valid_care;
+
+// Runs `call`, expects thetad::Error, and returns its message for EXPECT_THAT.
+template <typename Call>
+std::string error_message(Call&& call) {
+  try {
+    call();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "expected thetad::Error";
+  return "";
+}
+
+MatrixXd scalar(double v) { return MatrixXd::Constant(1, 1, v); }
+
+TEST(SolveCare, DoubleIntegratorClosedForm) {
+  MatrixXd A(2, 2);
+  A << 0, 1, 0, 0;
+  MatrixXd B(2, 1);
+  B << 0, 1;
+  const MatrixXd Q = MatrixXd::Identity(2, 2);
+  const MatrixXd R = scalar(1);
+  const CareResult result = solve_care(A, B, Q, R);
+  expect_valid_care(A, B, Q, R, result);
+  MatrixXd expected(2, 2);
+  expected << std::sqrt(3.0), 1, 1, std::sqrt(3.0);
+  EXPECT_LE((result.P - expected).norm(), 1e-14 * expected.norm());
+  EXPECT_EQ(result.iterations, 0);
+}
+
+// a p + p a − p² b²/r + q = 0  ⇒  p = r (a + √(a² + b² q / r)) / b².
+TEST(SolveCare, ScalarClosedForm) {
+  const double cases[][4] = {{2, 1, 1, 1}, {-1, 1, 0, 1}, {-3, 0.5, 4, 2}, {10, 3, 1e4, 1e-2}, {0, 1, 1, 1}};
+  for (const auto& [a, b, q, r] : cases) {
+    const CareResult result = solve_care(scalar(a), scalar(b), scalar(q), scalar(r));
+    expect_valid_care(scalar(a), scalar(b), scalar(q), scalar(r), result);
+    const double expected = r * (a + std::sqrt(a * a + b * b * q / r)) / (b * b);
+    EXPECT_NEAR(result.P(0, 0), expected, 1e-14 * std::max(1.0, expected)) << "a=" << a << " q=" << q;
+  }
+}
+
+TEST(SolveCare, RandomStabilizableSystems) {
+  std::mt19937_64 rng(20240607);
+  std::normal_distribution<double> normal;
+  auto random = [&](Eigen::Index rows, Eigen::Index cols) {
+    return MatrixXd(MatrixXd::NullaryExpr(rows, cols, [&]() { return normal(rng); }));
+  };
+  int unstable_systems = 0;
+  for (int n = 1; n <= 40; ++n) {
+    for (int m = 1; m <= n; ++m) {
+      // Eigenvalues of randn/√n fill the unit disc; the shift makes a fraction of them unstable.
+      const MatrixXd A = random(n, n) / std::sqrt(double(n)) + 0.3 * MatrixXd::Identity(n, n);
+      const MatrixXd B = random(n, m);
+      const MatrixXd C = random(std::max(1, n / 2), n);
+      const MatrixXd Q = C.transpose() * C;
+      const MatrixXd M = random(m, m);
+      const MatrixXd R = M * M.transpose() + 0.1 * MatrixXd::Identity(m, m);
+      if (Eigen::EigenSolver<MatrixXd>(A, false).eigenvalues().real().maxCoeff() > 0) ++unstable_systems;
+      const CareResult result = solve_care(A, B, Q, R);
+      SCOPED_TRACE("n=" + std::to_string(n) + " m=" + std::to_string(m));
+      expect_valid_care(A, B, Q, R, result);
+    }
+  }
+  EXPECT_GT(unstable_systems, 700);
+}
+
+// The paper-sized plant at rest: A0 = F(xa(t0)), g0 = B(xa(t0)) of paper-spec §10.3, weights of §7.2.
+struct PaperPlant {
+  MatrixXd A = MatrixXd::Zero(18, 18);
+  MatrixXd B = MatrixXd::Zero(18, 5);
+  MatrixXd Q = VectorXd{{1e4, 2e4, 1e7, 100, 100, 1, 100, 100, 1e3, 200, 1, 200, 1e5, 1e5, 2e3, 2e3, 1e6, 0}}.asDiagonal();
+  MatrixXd R = VectorXd{{1, 200, 1e7, 1e5, 1e5}}.asDiagonal();
+  PaperPlant() {
+    auto a = [this](int i, int j, double v) { A(i - 1, j - 1) = v; };  // 1-based as in the spec
+    a(1, 4, 1), a(2, 5, 1), a(3, 6, 1), a(4, 8, -9.81), a(5, 7, 9.81), a(5, 18, 6.3246e-6), a(6, 18, 9.84953);
+    a(7, 10, 1), a(8, 11, 1), a(9, 12, 1), a(10, 14, 300), a(10, 18, 2.30496e-5), a(11, 13, 158.824);
+    a(12, 18, -36.6771), a(13, 11, -1), a(13, 13, -10), a(14, 10, -1), a(14, 14, -10);
+    a(15, 1, 1), a(16, 2, 1), a(17, 3, 1), a(18, 18, -0.1);
+    auto g = [this](int i, int j, double v) { B(i - 1, j - 1) = v; };
+    g(5, 2, 5.4), g(6, 1, -0.121951), g(10, 2, 19.68), g(12, 2, -217.810), g(13, 4, 44.515), g(14, 5, 44.515);
+  }
+};
+
+// A value as printed in the spec and half a unit of its last printed digit.
+struct Printed {
+  double value;
+  double half_unit;
+};
+
+TEST(SolveCare, PaperSizedCaseMatchesSpec) {
+  const PaperPlant plant;
+  const CareResult result = solve_care(plant.A, plant.B, plant.Q, plant.R);
+  expect_valid_care(plant.A, plant.B, plant.Q, plant.R, result);
+  EXPECT_LE(result.relative_residual, 1e-12);
+  std::cout << "paper case: relative residual " << result.relative_residual << "\n";
+
+  const Printed diag_T0[] = {{7758.9, 0.05},   {12453.1, 0.05}, {736693, 0.5},   {899.94, 0.005},
+                             {1194.94, 0.005}, {1888.55, 0.005}, {4564.85, 0.005}, {3991.31, 0.005},
+                             {455.93, 0.005},  {35.131, 5e-4},  {64.12, 0.005},  {2.407, 5e-4},
+                             {2312.85, 0.005}, {2633.21, 0.005}, {5669.13, 0.005}, {7380.58, 0.005},
+                             {3.23429e6, 5},   {32754.8, 0.05}};
+  for (int i = 0; i < 18; ++i)
+    EXPECT_NEAR(result.P(i, i), diag_T0[i].value, diag_T0[i].half_unit) << "diag(T0) entry " << i + 1;
+
+  const std::complex<double> j(0, 1);
+  const std::pair<std::complex<double>, double> closed_loop[] = {
+      {-218.70, 0.005},  {-41.824, 5e-4}, {-32.881, 5e-4}, {-20.231, 5e-4}, {-13.885 + 13.887 * j, 5e-4},
+      {-13.885 - 13.887 * j, 5e-4}, {-4.7297 + 1.5033 * j, 5e-5}, {-4.7297 - 1.5033 * j, 5e-5}, {-4.4291, 5e-5},
+      {-2.2507 + 3.8382 * j, 5e-5}, {-2.2507 - 3.8382 * j, 5e-5}, {-2.2363, 5e-5}, {-2.0500 + 4.1313 * j, 5e-5},
+      {-2.0500 - 4.1313 * j, 5e-5}, {-0.44770, 5e-6}, {-0.31630, 5e-6}, {-0.31623, 5e-6}, {-0.1, 5e-6}};
+  std::vector<bool> matched(18, false);
+  for (const auto& [expected, half_unit] : closed_loop) {
+    int best = -1;
+    for (int i = 0; i < 18; ++i)
+      if (!matched[i] && (best < 0 || std::abs(result.closed_loop_eigenvalues(i) - expected) <
+                                          std::abs(result.closed_loop_eigenvalues(best) - expected)))
+        best = i;
+    matched[best] = true;
+    const std::complex<double> got = result.closed_loop_eigenvalues(best);
+    // Real and imaginary parts are each printed to half_unit.
+    EXPECT_NEAR(got.real(), expected.real(), half_unit) << "closed-loop eigenvalue " << expected;
+    EXPECT_NEAR(got.imag(), expected.imag(), half_unit) << "closed-loop eigenvalue " << expected;
+  }
+
+  // s-column feed-forward −R⁻¹g0'T0(:, 18) = −K(:, 18).
+  const Printed feed_forward[] = {{80.7656, 5e-5}, {-0.03912, 5e-6}, {0, 1e-12}, {0, 1e-12}, {0.07319, 5e-6}};
+  for (int i = 0; i < 5; ++i)
+    EXPECT_NEAR(-result.K(i, 17), feed_forward[i].value, feed_forward[i].half_unit) << "feed-forward entry " << i + 1;
+}
+
+// One CAREX example as written by scripts/make_carex_fixtures.py.
+struct Fixture {
+  std::string name;
+  std::map<std::string, MatrixXd> matrices;
+};
+
+Fixture read_fixture(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  Fixture fixture;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream header(line);
+    std::string key;
+    header >> key;
+    if (key == "name") {
+      header >> fixture.name;
+    } else if (key.size() > 0 && std::isupper(static_cast<unsigned char>(key[0]))) {
+      Eigen::Index rows = 0;
+      Eigen::Index cols = 0;
+      header >> rows >> cols;
+      MatrixXd M(rows, cols);
+      for (Eigen::Index i = 0; i < rows; ++i)
+        for (Eigen::Index j = 0; j < cols; ++j) in >> M(i, j);
+      fixture.matrices[key] = M;
+    }
+  }
+  return fixture;
+}
+
+// Per example: the residual tolerance for expect_valid_care and the relative distance allowed to
+// the reference (the exact solution where CAREX gives one, scipy's otherwise). Where these are
+// looser than 1e-10 / 1e-8 the reason is the conditioning of the example, stated alongside.
+struct CarexExpectation {
+  double residual_tol;
+  double solution_tol;
+  const char* why;
+};
+
+const std::map<std::string, CarexExpectation> kCarex = {
+    {"carex_1_1", {1e-14, 1e-14, "well conditioned"}},
+    {"carex_1_2", {1e-13, 1e-13, "well conditioned"}},
+    {"carex_2_1", {1e-13, 1e-10, "nearly unstabilizable (eps = 1e-6), ‖P‖ = 2e12"}},
+    {"carex_2_2", {1e-10, 1e-8, "R nearly singular (cond 4e8)"}},
+    {"carex_2_3", {1e-13, 1e-8, "ill conditioned for large eps"}},
+    {"carex_2_4", {1e-13, 1e-8, "ill-conditioned Hamiltonian (eps = 1e-7)"}},
+    {"carex_2_6", {1e-12, 1e-8, "badly scaled Hamiltonian, scipy is off by 2e-3 here: compared to X_exact"}},
+    {"carex_2_7", {1e-12, 1e-8, "stiff, entries 1e6"}},
+    {"carex_2_8", {1e-12, 1e-8, "poor separation of the closed-loop spectrum"}},
+    {"carex_3_1", {1e-12, 1e-8, "n = 39"}},
+    {"carex_3_2", {1e-12, 1e-12, "n = 64, exact solution known"}},
+    {"carex_4_1", {1e-10, 1e-8, "ill-conditioned Riccati equation, n = 21"}},
+};
+
+TEST(SolveCare, CarexBenchmarks) {
+  const std::filesystem::path dir = std::filesystem::path(THETAD_SOURCE_DIR) / "tests/fixtures/carex";
+  std::vector<std::filesystem::path> files;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) files.push_back(entry.path());
+  std::sort(files.begin(), files.end());
+  ASSERT_EQ(files.size(), kCarex.size()) << "fixtures and expectations out of step";
+  for (const auto& path : files) {
+    const Fixture f = read_fixture(path);
+    SCOPED_TRACE(f.name);
+    ASSERT_TRUE(kCarex.count(f.name)) << "no expectation for " << f.name;
+    const CarexExpectation& expect = kCarex.at(f.name);
+    const MatrixXd& A = f.matrices.at("A");
+    const MatrixXd& B = f.matrices.at("B");
+    const MatrixXd& Q = f.matrices.at("Q");
+    const MatrixXd& R = f.matrices.at("R");
+    const CareResult result = solve_care(A, B, Q, R);
+    expect_valid_care(A, B, Q, R, result, expect.residual_tol);
+    const bool exact = f.matrices.count("X_exact") > 0;
+    const MatrixXd& reference = exact ? f.matrices.at("X_exact") : f.matrices.at("P");
+    const double distance = (result.P - reference).norm() / reference.norm();
+    const double to_scipy = (result.P - f.matrices.at("P")).norm() / f.matrices.at("P").norm();
+    EXPECT_LE(distance, expect.solution_tol) << expect.why;
+    std::cout << f.name << ": relative residual " << result.relative_residual << ", relative distance to "
+              << (exact ? "exact" : "scipy") << " " << distance << ", to scipy " << to_scipy << "\n";
+  }
+}
+
+TEST(SolveCare, StableUncontrollableModeWithZeroWeightIsFine) {
+  // Stabilizable and detectable but neither controllable nor observable: the s-mode situation.
+  MatrixXd A(2, 2);
+  A << 1, 0, 0, -0.1;
+  MatrixXd B(2, 1);
+  B << 1, 0;
+  MatrixXd Q = MatrixXd::Zero(2, 2);
+  Q(0, 0) = 1;
+  const CareResult result = solve_care(A, B, Q, scalar(1));
+  expect_valid_care(A, B, Q, scalar(1), result);
+  EXPECT_NEAR(result.P(0, 0), 1 + std::sqrt(2.0), 1e-14);
+  EXPECT_EQ(result.P(1, 1), 0.0);
+}
+
+TEST(SolveCareErrors, DimensionMismatch) {
+  const MatrixXd I2 = MatrixXd::Identity(2, 2);
+  EXPECT_THAT(error_message([&] { solve_care(MatrixXd::Zero(2, 3), I2, I2, I2); }), HasSubstr("A must be square"));
+  EXPECT_THAT(error_message([&] { solve_care(I2, MatrixXd::Zero(3, 1), I2, scalar(1)); }),
+              HasSubstr("B is 3x1 but A is 2x2"));
+  EXPECT_THAT(error_message([&] { solve_care(I2, MatrixXd::Zero(2, 1), MatrixXd::Identity(3, 3), scalar(1)); }),
+              HasSubstr("Q is 3x3 but A is 2x2"));
+  EXPECT_THAT(error_message([&] { solve_care(I2, MatrixXd::Zero(2, 1), I2, I2); }),
+              HasSubstr("R is 2x2 but B has 1 columns"));
+  EXPECT_THAT(error_message([&] { solve_care(MatrixXd(0, 0), MatrixXd(0, 1), MatrixXd(0, 0), scalar(1)); }),
+              HasSubstr("A must be square and non-empty"));
+}
+
+TEST(SolveCareErrors, NonFiniteEntries) {
+  const MatrixXd I2 = MatrixXd::Identity(2, 2);
+  MatrixXd bad = I2;
+  bad(1, 0) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THAT(error_message([&] { solve_care(bad, I2, I2, I2); }), HasSubstr("A has a non-finite entry"));
+  bad(1, 0) = std::numeric_limits<double>::infinity();
+  EXPECT_THAT(error_message([&] { solve_care(I2, bad, I2, I2); }), HasSubstr("B has a non-finite entry"));
+  EXPECT_THAT(error_message([&] { solve_care(I2, I2, bad, I2); }), HasSubstr("Q has a non-finite entry"));
+  EXPECT_THAT(error_message([&] { solve_care(I2, I2, I2, bad); }), HasSubstr("R has a non-finite entry"));
+}
+
+TEST(SolveCareErrors, BadWeights) {
+  const MatrixXd I2 = MatrixXd::Identity(2, 2);
+  MatrixXd asymmetric = I2;
+  asymmetric(0, 1) = 0.5;
+  EXPECT_THAT(error_message([&] { solve_care(I2, I2, asymmetric, I2); }), HasSubstr("Q is not symmetric"));
+  EXPECT_THAT(error_message([&] { solve_care(I2, I2, I2, asymmetric); }), HasSubstr("R is not symmetric"));
+  MatrixXd indefinite(2, 2);
+  indefinite << 1, 0, 0, -2;
+  EXPECT_THAT(error_message([&] { solve_care(I2, I2, indefinite, I2); }),
+              HasSubstr("Q is not positive semi-definite (min eigenvalue -2"));
+  EXPECT_THAT(error_message([&] { solve_care(I2, I2, I2, indefinite); }),
+              HasSubstr("R is not symmetric positive definite (min eigenvalue -2"));
+  MatrixXd singular(2, 2);
+  singular << 1, 1, 1, 1;
+  EXPECT_THAT(error_message([&] { solve_care(I2, I2, I2, singular); }),
+              HasSubstr("R is not symmetric positive definite"));
+}
+
+TEST(SolveCareErrors, ImaginaryAxisEigenvalues) {
+  // A = 0 with no input: the Hamiltonian [[0, 0], [−1, 0]] has λ = 0 twice.
+  EXPECT_THAT(error_message([&] { solve_care(scalar(0), scalar(0), scalar(1), scalar(1)); }),
+              AllOf(HasSubstr("eigenvalues on the imaginary axis (|Re λ| = 0"), HasSubstr("not be stabilizable")));
+  // Undamped oscillator that Q does not see: unobservable modes ±i on the axis.
+  MatrixXd A(2, 2);
+  A << 0, 1, -1, 0;
+  MatrixXd B(2, 1);
+  B << 0, 1;
+  EXPECT_THAT(error_message([&] { solve_care(A, B, MatrixXd::Zero(2, 2), scalar(1)); }),
+              AllOf(HasSubstr("imaginary axis"), HasSubstr("not detectable")));
+}
+
+TEST(SolveCareErrors, Unstabilizable) {
+  // Unstable mode at +1 that B cannot reach.
+  MatrixXd A(2, 2);
+  A << 1, 0, 0, -1;
+  MatrixXd B(2, 1);
+  B << 0, 1;
+  EXPECT_THAT(error_message([&] { solve_care(A, B, MatrixXd::Identity(2, 2), scalar(1)); }),
+              AllOf(HasSubstr("no stabilizing solution"), HasSubstr("rcond(U1) = "), HasSubstr("not be stabilizable")));
+}
+
+TEST(SolveCareNewton, ConvergesFromNearbySystem) {
+  const PaperPlant plant;
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> sign(-1.0, 1.0);
+  MatrixXd nearby = plant.A;
+  for (Eigen::Index i = 0; i < nearby.size(); ++i) nearby(i) *= 1.0 + 1e-3 * sign(rng);
+  const CareResult warm = solve_care(nearby, plant.B, plant.Q, plant.R);
+  const CareResult direct = solve_care(plant.A, plant.B, plant.Q, plant.R);
+  const CareResult newton = solve_care_newton(plant.A, plant.B, plant.Q, plant.R, warm.P);
+  expect_valid_care(plant.A, plant.B, plant.Q, plant.R, newton);
+  EXPECT_LE(newton.iterations, 6);
+  EXPECT_GE(newton.iterations, 1);
+  EXPECT_LE((newton.P - direct.P).norm(), 1e-10 * direct.P.norm());
+  std::cout << "Newton from nearby system: " << newton.iterations << " iterations, relative residual "
+            << newton.relative_residual << ", distance to Laub " << (newton.P - direct.P).norm() / direct.P.norm()
+            << "\n";
+}
+
+TEST(SolveCareNewton, ConvergesOnRandomSystems) {
+  std::mt19937_64 rng(99);
+  std::normal_distribution<double> normal;
+  auto random = [&](Eigen::Index rows, Eigen::Index cols) {
+    return MatrixXd(MatrixXd::NullaryExpr(rows, cols, [&]() { return normal(rng); }));
+  };
+  for (int n : {1, 3, 8, 18, 30}) {
+    const int m = std::max(1, n / 3);
+    const MatrixXd A = random(n, n) / std::sqrt(double(n)) + 0.3 * MatrixXd::Identity(n, n);
+    const MatrixXd B = random(n, m);
+    const MatrixXd Q = MatrixXd::Identity(n, n);
+    const MatrixXd R = MatrixXd::Identity(m, m);
+    const MatrixXd nearby = A + 1e-3 * A.norm() / n * random(n, n);
+    const CareResult warm = solve_care(nearby, B, Q, R);
+    const CareResult newton = solve_care_newton(A, B, Q, R, warm.P);
+    SCOPED_TRACE("n=" + std::to_string(n));
+    expect_valid_care(A, B, Q, R, newton);
+    EXPECT_LE(newton.iterations, 6);
+    EXPECT_LE((newton.P - solve_care(A, B, Q, R).P).norm(), 1e-10 * newton.P.norm());
+  }
+}
+
+TEST(SolveCareNewton, Errors) {
+  MatrixXd A(2, 2);
+  A << 1, 1, 0, 2;
+  const MatrixXd B = MatrixXd::Identity(2, 2);
+  const MatrixXd I2 = MatrixXd::Identity(2, 2);
+  EXPECT_THAT(error_message([&] { solve_care_newton(A, B, I2, I2, MatrixXd::Zero(2, 2)); }),
+              AllOf(HasSubstr("P0 is not stabilizing"), HasSubstr("largest Re λ of A − G P0 is 2")));
+  EXPECT_THAT(error_message([&] { solve_care_newton(A, B, I2, I2, MatrixXd::Zero(3, 3)); }),
+              HasSubstr("P0 is 3x3 but A is 2x2"));
+  EXPECT_THAT(error_message([&] { solve_care_newton(A, B, I2, I2, 100 * I2, 1e-12, 1); }),
+              AllOf(HasSubstr("did not converge in 1 iterations"), HasSubstr("relative residual")));
+  const MatrixXd P = solve_care(A, B, I2, I2).P;
+  EXPECT_THAT(error_message([&] { solve_care_newton(A, B, I2, I2, P, 0.0); }), HasSubstr("tolerance > 0"));
+}
+
+}  // namespace
+}  // namespace thetad
