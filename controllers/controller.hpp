@@ -1,6 +1,9 @@
 #pragma once
 
 #include <memory>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "core/sim/control_law.hpp"
 
@@ -12,10 +15,15 @@ namespace thetad {
 //
 // The control step receives the measured 18-state (noisy; its integral entries hold the
 // integral of the measured position, s = 1) and the reference (commanded position and its
-// integral); see controllers/tracking.hpp for the V_track vector of Eq. (36) built from them.
+// integral); the plant's tracking_vector() turns them into what the value function acts on (V_track, Eq. 36).
 class Controller : public sim::ControlLaw {
  public:
   virtual std::unique_ptr<Controller> clone() const = 0;
+
+  // Named event counts since the last reset() that a run summary reports next to the tracking
+  // figures, e.g. the SDRE's CARE failures that fell back to the last good solution. A controller
+  // that has nothing to report keeps this default (none).
+  virtual std::vector<std::pair<std::string, double>> counters() const { return {}; }
 };
 
 }  // namespace thetad

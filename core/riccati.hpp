@@ -32,7 +32,9 @@ struct CareResult {
   // ‖A'P + PA − PBR⁻¹B'P + Q‖_F / max(1, ‖Q‖_F). On ill-conditioned equations the terms of
   // the sum can be far larger than Q, and so is this number even for a backward-stable solve.
   double relative_residual;
-  int iterations;  // Newton steps taken; 0 for the direct method
+  // Newton steps taken. solve_care: Newton refinement steps after the Schur solution, 0 unless
+  // that solution was not backward stable (see riccati.cpp).
+  int iterations;
 };
 
 // Laub's Schur method: the ordered real Schur form of the (scaled) Hamiltonian

@@ -2,6 +2,8 @@
 
 #include <Eigen/Core>
 
+#include "core/sim/control_law.hpp"
+
 namespace thetad {
 
 // A plant in state-dependent-coefficient (SDC) form: xdot = f(x, u) = F(x) x + B(x) u, exactly.
@@ -22,6 +24,19 @@ class SdcPlant {
 
   virtual void f(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& u,
                  Eigen::Ref<Eigen::VectorXd> xdot) const = 0;
+
+  // Whether F and B change with the input (then sdc(x, u) needs the input being computed, and a
+  // controller iterates to the fixed point; otherwise one evaluation is exact).
+  virtual bool sdc_depends_on_input() const { return false; }
+
+  // The vector a controller's value function acts on, built from the measured state and the
+  // reference: the state itself for a regulator (the default), V_track of Eq. (36) for the
+  // helicopter's position servo. Writes all n entries.
+  virtual void tracking_vector(const Eigen::Ref<const Eigen::VectorXd>& measured, const sim::Reference& reference,
+                               Eigen::Ref<Eigen::VectorXd> v) const {
+    (void)reference;
+    v = measured;
+  }
 
   // Writes every entry of F (n x n) and B (n x m), zeros included.
   virtual void sdc(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& u,

@@ -124,13 +124,17 @@ class TrimEquations {
     u << z[kUnkThrust] * weight_, z[kUnkPed], z[kUnkCol], z[kUnkLon], z[kUnkLat];
   }
 
+  // Why the last evaluation that failed had no value.
+  const std::string& last_error() const { return last_error_; }
+
   // False where f has no value (no A4 rotor speed for this thrust and airspeed) or is not finite:
   // Ipopt then shortens its step.
   bool evaluate(const double* z, double* c) {
     point(z, x_, u_);
     try {
       plant_.f(x_, u_, xdot_);
-    } catch (const Error&) {
+    } catch (const Error& e) {
+      last_error_ = e.what();
       return false;
     }
     for (int i = 0; i < kConstraints; ++i) {
@@ -177,6 +181,7 @@ class TrimEquations {
   const TrimCondition& condition_;
   double weight_;
   Eigen::VectorXd x_, u_, xdot_;
+  std::string last_error_ = "f is not finite";
 };
 
 class TrimNlp final : public Ipopt::TNLP {
@@ -249,16 +254,21 @@ class TrimNlp final : public Ipopt::TNLP {
     return true;
   }
 
+  // The constraints are re-evaluated here rather than read from Ipopt's g, which holds no values
+  // when the very first evaluation failed.
   void finalize_solution(Ipopt::SolverReturn, Ipopt::Index, const Ipopt::Number* x, const Ipopt::Number*,
-                         const Ipopt::Number*, Ipopt::Index, const Ipopt::Number* g, const Ipopt::Number*,
+                         const Ipopt::Number*, Ipopt::Index, const Ipopt::Number*, const Ipopt::Number*,
                          Ipopt::Number, const Ipopt::IpoptData*, Ipopt::IpoptCalculatedQuantities*) override {
     std::copy(x, x + kUnknowns, solution_.begin());
+    std::array<double, kConstraints> g{};
+    has_value_ = equations_.evaluate(x, g.data());
     constraint_violation_ = 0.0;
-    for (int i = 0; i < kConstraints; ++i) constraint_violation_ = std::max(constraint_violation_, std::abs(g[i]));
+    for (const double gi : g) constraint_violation_ = std::max(constraint_violation_, std::abs(gi));
     finalized_ = true;
   }
 
   bool finalized() const { return finalized_; }
+  bool has_value() const { return has_value_; }
   const std::array<double, kUnknowns>& solution() const { return solution_; }
   double constraint_violation() const { return constraint_violation_; }
   int iterations() const { return iterations_; }
@@ -270,6 +280,7 @@ class TrimNlp final : public Ipopt::TNLP {
   double constraint_violation_ = std::numeric_limits<double>::quiet_NaN();
   int iterations_ = 0;
   bool finalized_ = false;
+  bool has_value_ = false;
 };
 
 // Ipopt with MUMPS keeps global state: one solve at a time in the whole process.
@@ -277,7 +288,9 @@ std::mutex ipopt_mutex;
 
 std::string describe(const TrimCondition& c) {
   std::ostringstream out;
-  out << "trim at V_ned = (" << c.velocity_ned.x() << ", " << c.velocity_ned.y() << ", " << c.velocity_ned.z()
+  // "+ 0.0" prints a negative zero (a zero climb rate negated) as 0.
+  out << "trim at V_ned = (" << c.velocity_ned.x() + 0.0 << ", " << c.velocity_ned.y() + 0.0 << ", "
+      << c.velocity_ned.z() + 0.0
       << ") m/s, heading " << c.heading << " rad, altitude " << -c.position_ned.z() << " m";
   return out.str();
 }
@@ -291,6 +304,10 @@ Trim find_trim(const heli::Helicopter& plant, const TrimCondition& condition, co
   start[kUnkThrust] = 1.0;
   if (options.initial_guess) {
     const Trim& guess = *options.initial_guess;
+    if (guess.state.size() != kStateDim || guess.input.size() != kInputDim) {
+      throw Error("find_trim: the initial guess has " + std::to_string(guess.state.size()) + " states and " +
+                  std::to_string(guess.input.size()) + " inputs; expected 18 and 5");
+    }
     start = {guess.state[kPhi],  guess.state[kTheta], guess.state[kA1],  guess.state[kB1],
              guess.input[kTmr] / equations.weight(), guess.input[kPed], guess.input[kCol],
              guess.input[kLon], guess.input[kLat]};
@@ -316,13 +333,14 @@ Trim find_trim(const heli::Helicopter& plant, const TrimCondition& condition, co
   }
 
   const std::string what = describe(condition);
-  if (!nlp->finalized()) {
-    throw Error(what + ": Ipopt did not converge (status " + status_name(status) + ", " +
-                std::to_string(nlp->iterations()) + " iterations; no iterate: f has no value at the start)");
+  std::string report = std::string("status ") + status_name(status) + ", " + std::to_string(nlp->iterations()) +
+                       " iterations, ";
+  if (!nlp->finalized() || !nlp->has_value()) {
+    throw Error(what + ": Ipopt did not converge (" + report +
+                "final constraint violation undefined: f has no value at the final iterate: " +
+                equations.last_error() + ")");
   }
-  const std::string report = std::string("status ") + status_name(status) + ", " + std::to_string(nlp->iterations()) +
-                             " iterations, final constraint violation " +
-                             to_text(nlp->constraint_violation());
+  report += "final constraint violation " + to_text(nlp->constraint_violation());
   if (status != Ipopt::Solve_Succeeded && status != Ipopt::Solved_To_Acceptable_Level) {
     throw Error(what + ": Ipopt did not converge (" + report + ")");
   }

@@ -4,19 +4,34 @@
 #include <exception>
 #include <filesystem>
 
+#include "apps/thetad/compare_command.hpp"
 #include "apps/thetad/demo_command.hpp"
+#include "apps/thetad/run_command.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"thetad: theta-D, SDRE and LQR control of the X-Cell miniature helicopter"};
   app.require_subcommand(1);
+  // Bad arguments are one line too, in the same form as every other error.
+  app.failure_message([](const CLI::App*, const CLI::Error& error) {
+    return std::string("thetad: error: ") + error.what() + " (see --help)\n";
+  });
 
   std::filesystem::path demo_out = "out";
   auto* demo = app.add_subcommand("demo", "Solve the paper-sized Riccati problem and trim the plant; print diagnostics");
   demo->add_option("--out", demo_out, "Output directory")->capture_default_str();
 
+  thetad::app::RunArguments run_arguments;
+  auto* run = thetad::app::add_run_command(app, run_arguments);
+  thetad::app::CompareArguments compare_arguments;
+  auto* compare = thetad::app::add_compare_command(app, compare_arguments);
+  auto* list = app.add_subcommand("list", "List the registered controllers with their descriptions");
+
   CLI11_PARSE(app, argc, argv);
   try {
     if (*demo) return thetad::app::run_demo(demo_out);
+    if (*run) return thetad::app::run_run(run_arguments);
+    if (*compare) return thetad::app::run_compare(compare_arguments);
+    if (*list) return thetad::app::run_list();
   } catch (const std::exception& e) {
     std::fprintf(stderr, "thetad: error: %s\n", e.what());
     return 1;

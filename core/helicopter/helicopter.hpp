@@ -36,6 +36,14 @@ class Helicopter final : public SdcPlant {
   void sdc(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& u,
            Eigen::Ref<Eigen::MatrixXd> F, Eigen::Ref<Eigen::MatrixXd> B) const override;
 
+  // The rotor speed follows T_mr, except with the governor model.
+  bool sdc_depends_on_input() const override {
+    return options_.rotor_speed_model != ModelOptions::RotorSpeedModel::governor;
+  }
+  // V_track of Eq. (36) (spec §7.3).
+  void tracking_vector(const Eigen::Ref<const Eigen::VectorXd>& measured, const sim::Reference& reference,
+                       Eigen::Ref<Eigen::VectorXd> v) const override;
+
   // F and B at a given main-rotor speed (what the controller's fixed point of spec §7.6 iterates on).
   void sdc_at_rotor_speed(const Eigen::Ref<const Eigen::VectorXd>& x, double rotor_speed,
                           Eigen::Ref<Eigen::MatrixXd> F, Eigen::Ref<Eigen::MatrixXd> B) const;

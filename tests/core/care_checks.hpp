@@ -14,13 +14,13 @@ namespace thetad::testing {
 
 // Expects `result` to be the stabilizing solution of A'P + PA − PBR⁻¹B'P + Q = 0:
 //  - P exactly symmetric and positive semi-definite (min eig ≥ −tol·‖P‖₂);
-//  - residual: ‖Res‖_F ≤ tol · max(1, ‖Q‖_F, ‖A'P + PA‖_F, ‖PGP‖_F). When the terms are no
-//    larger than Q this is the relative residual of CareResult ≤ tol. On ill-conditioned
-//    equations the terms are much larger than Q and cancel; rounding in forming them (by any
-//    backward-stable solver, and by this check itself) is then relative to their size, so the
-//    bound scales with the largest term. result.relative_residual must agree with the
-//    recomputed one;
-//  - K = R⁻¹B'P (‖RK − B'P‖_F ≤ tol·max(1, ‖B'P‖_F));
+//  - residual: the normwise residual ‖Res‖_F / (‖Q‖_F + 2‖A‖_F‖P‖_F + ‖G‖_F‖P‖_F²) ≤ tol. When P
+//    is no larger than Q this is about CareResult::relative_residual. On ill-conditioned
+//    equations the terms of the sum are much larger than Q and cancel; a backward-stable solver
+//    (and this check itself) then makes rounding errors relative to the terms, not to Q, so the
+//    bound is on the normwise (backward-error) residual. result.relative_residual must agree
+//    with the recomputed one to within that rounding;
+//  - K = R⁻¹B'P (‖RK − B'P‖_F ≤ tol·‖R‖_F‖K‖_F: the rounding of forming either side);
 //  - every reported and every recomputed eigenvalue of A − BK has Re λ < 0.
 inline void expect_valid_care(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::MatrixXd>& B,
                               const Eigen::Ref<const Eigen::MatrixXd>& Q, const Eigen::Ref<const Eigen::MatrixXd>& R,
@@ -43,17 +43,15 @@ inline void expect_valid_care(const Eigen::Ref<const Eigen::MatrixXd>& A, const 
   EXPECT_GE(p_eigenvalues(0), -tol * p_norm) << "P is not positive semi-definite";
 
   const Eigen::MatrixXd G = B * R.llt().solve(B.transpose());
-  const Eigen::MatrixXd linear = A.transpose() * P + P * A;
-  const Eigen::MatrixXd quadratic = P * G * P;
-  const Eigen::MatrixXd residual = linear - quadratic + Q;
-  const double scale = std::max({1.0, Q.norm(), linear.norm(), quadratic.norm()});
-  EXPECT_LE(residual.norm(), tol * scale) << "CARE residual too large (scale " << scale << ")";
-  const double relative = residual.norm() / std::max(1.0, Q.norm());
-  // Both are rounding-level quantities when tiny, so compare them to the scale, not each other.
-  EXPECT_NEAR(result.relative_residual, relative, 1e-3 * relative + 1e-14 * scale / std::max(1.0, Q.norm()));
+  const Eigen::MatrixXd residual = A.transpose() * P + P * A - P * G * P + Q;
+  const double terms = Q.norm() + 2.0 * A.norm() * P.norm() + G.norm() * P.norm() * P.norm();
+  EXPECT_LE(residual.norm(), tol * std::max(terms, std::numeric_limits<double>::min()))
+      << "CARE normwise residual too large (size of the terms " << terms << ")";
+  const double q_scale = std::max(1.0, Q.norm());
+  EXPECT_NEAR(result.relative_residual, residual.norm() / q_scale, 1e-13 * terms / q_scale);
 
   const Eigen::MatrixXd BtP = B.transpose() * P;
-  EXPECT_LE((R * result.K - BtP).norm(), tol * std::max(1.0, BtP.norm())) << "K is not R⁻¹B'P";
+  EXPECT_LE((R * result.K - BtP).norm(), tol * R.norm() * result.K.norm()) << "K is not R⁻¹B'P";
 
   for (Eigen::Index i = 0; i < n; ++i)
     EXPECT_LT(result.closed_loop_eigenvalues(i).real(), 0.0) << "reported closed-loop eigenvalue " << i;

@@ -37,7 +37,14 @@ void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
 
 // AddressSanitizer owns malloc itself; there the operator new count has to do.
-#if !defined(__SANITIZE_ADDRESS__)
+#if defined(__SANITIZE_ADDRESS__)
+#define THETAD_UNDER_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define THETAD_UNDER_ASAN 1
+#endif
+#endif
+#if !defined(THETAD_UNDER_ASAN)
 #define THETAD_COUNTS_MALLOC 1
 extern "C" {
 void* __libc_malloc(std::size_t size);

@@ -1,0 +1,24 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "apps/thetad/run_command.hpp"
+
+namespace thetad::app {
+
+struct CompareArguments {
+  FlightOptions flight;
+  std::vector<std::string> controllers;
+};
+CLI::App* add_compare_command(CLI::App& app, CompareArguments& arguments);
+
+// thetad compare: every controller on the same scenario and seed (same perturbed plant, same noise
+// and gust sequence), one after the other; <out>/<controller>.csv and .json per run, a table on
+// stdout and <out>/comparison.json. Every controller is built before the first flight, so a bad
+// name or settings block fails before anything is written.
+int run_compare(const CompareArguments& arguments);
+
+}  // namespace thetad::app

@@ -1,0 +1,76 @@
+#include "controllers/lqr.hpp"
+
+#include <string>
+#include <utility>
+
+#include "controllers/registry.hpp"
+#include "controllers/settings.hpp"
+#include "core/error.hpp"
+#include "core/helicopter/paper_weights.hpp"
+#include "core/trim.hpp"
+
+namespace thetad {
+
+namespace {
+
+Eigen::Index checked_design_states(const SdcPlant& model, const OperatingPoint& point, const LqrSettings& settings) {
+  const Eigen::Index n = model.state_dim(), m = model.input_dim();
+  if (point.state.size() != n || point.tracking.size() != n || point.input.size() != m) {
+    throw Error("lqr: the operating point's state, tracking vector and input have " +
+                std::to_string(point.state.size()) + ", " + std::to_string(point.tracking.size()) + " and " +
+                std::to_string(point.input.size()) + " entries, the model needs " + std::to_string(n) + ", " +
+                std::to_string(n) + " and " + std::to_string(m));
+  }
+  return settings.design_states == 0 ? n : settings.design_states;
+}
+
+}  // namespace
+
+LqrController::LqrController(const SdcPlant& model, OperatingPoint point, LqrSettings settings)
+    : model_(&model),
+      point_(std::move(point)),
+      design_states_(checked_design_states(model, point_, settings)),
+      v_(Eigen::VectorXd::Zero(model.state_dim())) {
+  design_ = design_lqr(model, point_, settings.Q, settings.R, design_states_);
+}
+
+void LqrController::reset(const Eigen::VectorXd& x0, double) {
+  if (x0.size() != model_->state_dim()) {
+    throw Error("lqr: initial state has " + std::to_string(x0.size()) + " entries, the model " +
+                std::to_string(model_->state_dim()));
+  }
+}
+
+void LqrController::control(double, const Eigen::Ref<const Eigen::VectorXd>& measured_state,
+                            const sim::Reference& reference, Eigen::Ref<Eigen::VectorXd> u) {
+  model_->tracking_vector(measured_state, reference, v_);
+  v_.head(design_states_) -= point_.tracking.head(design_states_);
+  u = point_.input;
+  u.noalias() -= design_.K * v_.head(design_states_);
+}
+
+namespace {
+
+std::unique_ptr<Controller> make_lqr(const YAML::Node& node, const ControllerContext& context) {
+  const Settings fields(node);
+  fields.allow_only({"Q", "R"});
+  LqrSettings settings;
+  settings.Q = fields.diagonal_weight("Q", heli::paper_state_weights(), Settings::Weight::positive_semidefinite);
+  settings.R = fields.diagonal_weight("R", heli::paper_input_weights(), Settings::Weight::positive_definite);
+  settings.design_states = heli::kStateDim - 1;  // all but the bias state s
+  const Eigen::VectorXd& x0 = context.initial_state;
+  if (x0.size() != heli::kStateDim) {
+    throw Error("lqr: initial state has " + std::to_string(x0.size()) + " entries, the model " +
+                std::to_string(heli::kStateDim));
+  }
+  const Trim trim = find_trim(context.model, TrimCondition::hover(-x0(heli::kZp), x0(heli::kPsi)));
+  return std::make_unique<LqrController>(context.model, operating_point(context.model, trim), std::move(settings));
+}
+
+const ControllerRegistration registration(
+    "lqr", "LQR at the hover trim, one fixed gain on V_track (Eq. 36) with the paper's Q and R; settings: Q, R",
+    make_lqr);
+
+}  // namespace
+
+}  // namespace thetad

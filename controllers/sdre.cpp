@@ -1,0 +1,154 @@
+#include "controllers/sdre.hpp"
+
+#include <Eigen/Cholesky>
+
+#include "controllers/registry.hpp"
+#include "controllers/settings.hpp"
+#include "core/error.hpp"
+#include "core/helicopter/paper_weights.hpp"
+
+namespace thetad {
+
+namespace {
+
+void require_shape(const char* what, const Eigen::MatrixXd& matrix, Eigen::Index rows, Eigen::Index cols) {
+  if (matrix.rows() != rows || matrix.cols() != cols) {
+    throw Error(std::string("sdre: ") + what + " is " + std::to_string(matrix.rows()) + "x" +
+                std::to_string(matrix.cols()) + ", the model needs " + std::to_string(rows) + "x" +
+                std::to_string(cols));
+  }
+}
+
+}  // namespace
+
+SdreController::SdreController(const SdcPlant& model, SdreSettings settings)
+    : model_(&model), settings_(std::move(settings)) {
+  const Eigen::Index n = model.state_dim(), m = model.input_dim();
+  if (settings_.fixed_point_iterations < 1) {
+    throw Error("sdre: fixed_point_iterations must be >= 1, got " + std::to_string(settings_.fixed_point_iterations));
+  }
+  if (!(settings_.fixed_point_tolerance >= 0.0)) throw Error("sdre: fixed_point_tolerance must be >= 0");
+  require_shape("Q", settings_.Q, n, n);
+  require_shape("R", settings_.R, m, m);
+  if (settings_.initial_input.size() == 0) settings_.initial_input = Eigen::VectorXd::Zero(m);
+  require_shape("initial_input", settings_.initial_input, m, 1);
+  // Q and R are checked in full by every CARE solve; R⁻¹ is needed here for u = −R⁻¹BᵀPv even
+  // when a solve fails, so R's definiteness is checked once, now.
+  const Eigen::LLT<Eigen::MatrixXd> llt(settings_.R);
+  if (llt.info() != Eigen::Success || !settings_.R.isApprox(settings_.R.transpose())) {
+    throw Error("sdre: R must be symmetric positive definite");
+  }
+  R_inverse_ = llt.solve(Eigen::MatrixXd::Identity(m, m));
+
+  F_.setZero(n, n);
+  B_.setZero(n, m);
+  P_.setZero(n, n);
+  v_.setZero(n);
+  Pv_.setZero(n);
+  BtPv_.setZero(m);
+  guess_ = settings_.initial_input;
+  update_.setZero(m);
+  applied_ = settings_.initial_input;
+}
+
+std::string SdreController::name() const {
+  return settings_.mode == SdreSettings::Mode::warm ? "sdre-warm" : "sdre-cold";
+}
+
+std::unique_ptr<Controller> SdreController::clone() const { return std::make_unique<SdreController>(*this); }
+
+void SdreController::reset(const Eigen::VectorXd& x0, double) {
+  if (x0.size() != model_->state_dim()) {
+    throw Error("sdre: initial state has " + std::to_string(x0.size()) + " entries, the model " +
+                std::to_string(model_->state_dim()));
+  }
+  applied_ = settings_.initial_input;
+  have_P_ = false;
+  fallback_count_ = 0;
+  failure_count_ = 0;
+  last_iterations_ = 0;
+  last_input_change_ = 0.0;
+}
+
+void SdreController::update_value_matrix(double t) {
+  try {
+    if (settings_.mode == SdreSettings::Mode::warm && have_P_) {
+      try {
+        P_ = solve_care_newton(F_, B_, settings_.Q, settings_.R, P_, settings_.newton_tolerance,
+                               settings_.newton_max_iterations)
+                 .P;
+        return;
+      } catch (const Error&) {
+        // The last P does not stabilize (F, B) here, or Newton did not converge: solve cold.
+        ++fallback_count_;
+      }
+    }
+    P_ = solve_care(F_, B_, settings_.Q, settings_.R).P;
+    have_P_ = true;
+  } catch (const Error& error) {
+    if (!have_P_) {
+      throw Error("sdre: no stabilizing CARE solution at t = " + std::to_string(t) +
+                  " s and no earlier one to fall back on: " + error.what());
+    }
+    // Keep flying on the last good P (counted, reported by counters()) rather than end the run on
+    // one state where (F, B) is momentarily not stabilizable.
+    ++failure_count_;
+  }
+}
+
+void SdreController::control(double t, const Eigen::Ref<const Eigen::VectorXd>& measured_state,
+                             const sim::Reference& reference, Eigen::Ref<Eigen::VectorXd> u) {
+  model_->tracking_vector(measured_state, reference, v_);
+  // Spec §7.6: start from the previously applied input; without input dependence one pass is exact.
+  const int passes = model_->sdc_depends_on_input() ? settings_.fixed_point_iterations : 1;
+  guess_ = applied_;
+  last_iterations_ = 0;
+  do {
+    model_->sdc(measured_state, guess_, F_, B_);
+    update_value_matrix(t);
+    Pv_.noalias() = P_ * v_;
+    BtPv_.noalias() = B_.transpose() * Pv_;
+    update_.noalias() = -R_inverse_ * BtPv_;  // Eq. (35) with P(x) in place of ΣT_i
+    last_input_change_ = (update_ - guess_).cwiseAbs().maxCoeff();
+    guess_ = update_;
+    ++last_iterations_;
+  } while (last_iterations_ < passes && last_input_change_ >= settings_.fixed_point_tolerance);
+  applied_ = guess_;
+  u = applied_;
+}
+
+Eigen::MatrixXd SdreController::value_matrix(const Eigen::VectorXd& x, const Eigen::VectorXd& input, double) const {
+  const SdcPlant::Coefficients sdc = model_->sdc(x, input);
+  return solve_care(sdc.F, sdc.B, settings_.Q, settings_.R).P;
+}
+
+std::vector<std::pair<std::string, double>> SdreController::counters() const {
+  return {{"care_newton_fallbacks", fallback_count_}, {"care_failures", failure_count_}};
+}
+
+namespace {
+
+std::unique_ptr<Controller> make_sdre(const YAML::Node& node, const ControllerContext& context) {
+  const Settings fields(node);
+  fields.allow_only({"mode", "fixed_point_iterations", "Q", "R"});
+  SdreSettings settings;
+  settings.mode = fields.choice("mode", "cold", {"cold", "warm"}) == "warm" ? SdreSettings::Mode::warm
+                                                                             : SdreSettings::Mode::cold;
+  settings.fixed_point_iterations = fields.integer("fixed_point_iterations", settings.fixed_point_iterations, 1);
+  settings.Q = fields.diagonal_weight("Q", heli::paper_state_weights(), Settings::Weight::positive_semidefinite);
+  settings.R = fields.diagonal_weight("R", heli::paper_input_weights(), Settings::Weight::positive_definite);
+  // The fixed point starts from hover thrust at the first sample (spec §7.6).
+  const heli::Parameters& p = context.model.parameters();
+  settings.initial_input = Eigen::VectorXd::Zero(context.model.input_dim());
+  settings.initial_input(heli::kTmr) = p.mass * p.gravity;
+  return std::make_unique<SdreController>(context.model, std::move(settings));
+}
+
+const ControllerRegistration registration(
+    "sdre", "state-dependent Riccati equation, one CARE per sample (Eq. 37); settings: mode (cold|warm), "
+            "fixed_point_iterations, Q, R",
+    make_sdre);
+
+}  // namespace
+
+}  // namespace thetad

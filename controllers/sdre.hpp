@@ -1,0 +1,104 @@
+#pragma once
+
+// The state-dependent Riccati equation controller (spec §7.5 step 1, Eq. 37): at every sample,
+// P(x) solves P F(x) + F(x)ᵀ P − P B(x) R⁻¹ B(x)ᵀ P + Q = 0 and u = −R⁻¹ B(x)ᵀ P(x) v, with
+// v = model.tracking_vector(measured, reference) (V_track of Eq. 36 for the helicopter).
+//
+// Generic over any SdcPlant. When the plant's F and B depend on the input (the helicopter's rotor
+// speed follows T_mr), u is the fixed point of u -> F(x; u), B(x; u) -> u' of spec §7.6, started
+// from the previously applied input: every pass solves one CARE.
+//
+// One CARE per pass allocates (solve_care returns a CareResult of fresh matrices): accepted for
+// this controller, whose step is dominated by the O(n³) Schur or Newton solve (~0.2-0.3 ms for
+// n = 18) rather than by the allocations. Everything else in the step works in buffers sized at
+// construction.
+
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "controllers/controller.hpp"
+#include "core/riccati.hpp"
+#include "core/sdc_plant.hpp"
+
+namespace thetad {
+
+struct SdreSettings {
+  enum class Mode {
+    cold,  // solve_care (balanced Laub–Schur) at every pass
+    warm,  // Newton–Kleinman from the last P (solve_care_newton), solve_care when that fails
+  };
+  Mode mode = Mode::cold;
+  // Q n×n symmetric positive semi-definite, R m×m symmetric positive definite (Eq. 37).
+  Eigen::MatrixXd Q;
+  Eigen::MatrixXd R;
+  // The first guess of the fixed point at the first sample (the helicopter: T_mr = m g, spec §7.6).
+  // Empty: zeros.
+  Eigen::VectorXd initial_input;
+  // Passes of the fixed point for input-dependent SDC plants; 1 is the one-step-lag variant.
+  // Stops early when max|Δu| < fixed_point_tolerance.
+  int fixed_point_iterations = 3;
+  double fixed_point_tolerance = 1e-6;
+  // Newton–Kleinman stopping rule of the warm mode (relative step or residual), and its step limit.
+  double newton_tolerance = 1e-12;
+  int newton_max_iterations = 20;
+};
+
+class SdreController final : public Controller {
+ public:
+  // Keeps a reference to the model: it must outlive the controller and its clones.
+  // Throws thetad::Error on settings that do not fit the model.
+  SdreController(const SdcPlant& model, SdreSettings settings);
+
+  // "sdre-cold" or "sdre-warm": compare runs of the two modes side by side.
+  std::string name() const override;
+  std::unique_ptr<Controller> clone() const override;
+
+  // Forgets the last P and the counts; the first sample then solves cold in either mode.
+  void reset(const Eigen::VectorXd& x0, double t0) override;
+  // Throws thetad::Error when the CARE fails at the first sample (no earlier P to fall back on).
+  void control(double t, const Eigen::Ref<const Eigen::VectorXd>& measured_state, const sim::Reference& reference,
+               Eigen::Ref<Eigen::VectorXd> u) override;
+
+  // P(x) of Eq. (37) with F(x; input), B(x; input), by a cold solve (independent of this
+  // controller's history); t is unused (the SDRE is time-invariant) and kept for the same call
+  // as ThetaDController::value_matrix, which the tuning compares it with (spec §7.5).
+  // Throws thetad::Error when the CARE has no stabilizing solution at x.
+  Eigen::MatrixXd value_matrix(const Eigen::VectorXd& x, const Eigen::VectorXd& input, double t) const;
+
+  // Warm-mode passes whose Newton–Kleinman failed and were solved cold instead.
+  int fallback_count() const { return fallback_count_; }
+  // Passes at which every solver failed, so the last good P was used (the run continues).
+  int failure_count() const { return failure_count_; }
+  // {"care_newton_fallbacks", fallback_count()}, {"care_failures", failure_count()}.
+  std::vector<std::pair<std::string, double>> counters() const override;
+
+  // P of the last pass of the last control() (the last good one after a failure).
+  const Eigen::MatrixXd& last_value_matrix() const { return P_; }
+  // Fixed-point passes of the last control() and the max|Δu| of its last pass.
+  int last_iterations() const { return last_iterations_; }
+  double last_input_change() const { return last_input_change_; }
+  const SdreSettings& settings() const { return settings_; }
+
+ private:
+  // Solves the CARE for F_, B_ into P_ by the mode's rule; counts fallbacks and failures.
+  void update_value_matrix(double t);
+
+  const SdcPlant* model_;
+  SdreSettings settings_;
+  Eigen::MatrixXd R_inverse_;
+
+  // Per-step buffers, sized in the constructor.
+  Eigen::MatrixXd F_, B_, P_;
+  bool have_P_ = false;
+  Eigen::VectorXd v_, Pv_, BtPv_, guess_, update_, applied_;
+  int fallback_count_ = 0;
+  int failure_count_ = 0;
+  int last_iterations_ = 0;
+  double last_input_change_ = 0.0;
+};
+
+}  // namespace thetad

@@ -1,0 +1,172 @@
+#include "controllers/settings.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace thetad {
+
+namespace {
+
+std::string where(const YAML::Mark& mark, const std::string& source) {
+  std::ostringstream prefix;
+  prefix << source;
+  if (!mark.is_null()) prefix << (source.empty() ? "" : ":") << mark.line + 1 << ":" << mark.column + 1;
+  if (prefix.tellp() > 0) prefix << ": ";
+  return prefix.str();
+}
+
+std::string kind_of(const YAML::Node& node) {
+  switch (node.Type()) {
+    case YAML::NodeType::Null: return "null";
+    case YAML::NodeType::Sequence: return "a sequence";
+    case YAML::NodeType::Map: return "a map";
+    case YAML::NodeType::Scalar: return "'" + node.Scalar() + "'";
+    case YAML::NodeType::Undefined: break;
+  }
+  return "nothing";
+}
+
+std::string list(std::initializer_list<std::string_view> names) {
+  std::string joined;
+  for (const auto name : names) joined += (joined.empty() ? "" : ", ") + std::string(name);
+  return joined;
+}
+
+std::string interval(double min, double max) {
+  std::ostringstream text;
+  text << "[" << min << ", " << max << "]";
+  return text.str();
+}
+
+}  // namespace
+
+SettingsError::SettingsError(std::string field, std::string reason, const YAML::Mark& mark, std::string source)
+    : Error(where(mark, source) + "field '" + field + "': " + reason),
+      field_(std::move(field)),
+      reason_(std::move(reason)),
+      mark_(mark),
+      source_(std::move(source)) {}
+
+Settings::Settings(const YAML::Node& node, std::string path) : node_(node), path_(std::move(path)) {
+  if (node_.IsDefined() && !node_.IsNull() && !node_.IsMap()) {
+    throw SettingsError(path_.empty() ? "settings" : path_, "expected a map of fields, got " + kind_of(node_),
+                        node_.Mark());
+  }
+}
+
+std::string Settings::field_name(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+
+SettingsError Settings::error(const std::string& key, const std::string& reason) const {
+  // A missing key's node has no position (and an undefined node throws on Mark()): point at the
+  // enclosing block instead.
+  const YAML::Node value = node_.IsMap() ? node_[key] : YAML::Node();
+  const YAML::Mark mark = value.IsDefined() ? value.Mark() : (node_.IsDefined() ? node_.Mark() : YAML::Mark::null_mark());
+  return {field_name(key), reason, mark};
+}
+
+void Settings::allow_only(std::initializer_list<std::string_view> allowed) const {
+  if (!node_.IsMap()) return;
+  for (const auto& item : node_) {
+    const std::string key = item.first.Scalar();
+    if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
+      throw SettingsError(field_name(key), "unknown field (allowed: " + list(allowed) + ")", item.first.Mark());
+    }
+  }
+}
+
+bool Settings::has(const std::string& key) const { return node_.IsMap() && node_[key].IsDefined(); }
+
+double Settings::entry(const YAML::Node& node, const std::string& field, double min, double max) const {
+  double value = 0.0;
+  if (!node.IsScalar() || !YAML::convert<double>::decode(node, value)) {
+    throw SettingsError(field, "expected a number, got " + kind_of(node), node.Mark());
+  }
+  if (!std::isfinite(value)) throw SettingsError(field, "expected a finite number, got " + node.Scalar(), node.Mark());
+  if (value < min || value > max) {
+    throw SettingsError(field, "expected a number in " + interval(min, max) + ", got " + node.Scalar(), node.Mark());
+  }
+  return value;
+}
+
+double Settings::number(const std::string& key, double fallback, double min, double max) const {
+  if (!has(key)) return fallback;
+  return entry(node_[key], field_name(key), min, max);
+}
+
+int Settings::integer(const std::string& key, int fallback, int min, int max) const {
+  if (!has(key)) return fallback;
+  const YAML::Node node = node_[key];
+  int value = 0;
+  if (!node.IsScalar() || !YAML::convert<int>::decode(node, value)) {
+    throw error(key, "expected an integer, got " + kind_of(node));
+  }
+  if (value < min || value > max) {
+    throw error(key, "expected an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "], got " +
+                         std::to_string(value));
+  }
+  return value;
+}
+
+bool Settings::boolean(const std::string& key, bool fallback) const {
+  if (!has(key)) return fallback;
+  const YAML::Node node = node_[key];
+  bool value = false;
+  if (!node.IsScalar() || !YAML::convert<bool>::decode(node, value)) {
+    throw error(key, "expected true or false, got " + kind_of(node));
+  }
+  return value;
+}
+
+std::string Settings::string(const std::string& key, const std::string& fallback) const {
+  if (!has(key)) return fallback;
+  const YAML::Node node = node_[key];
+  if (!node.IsScalar()) throw error(key, "expected a string, got " + kind_of(node));
+  return node.Scalar();
+}
+
+std::string Settings::choice(const std::string& key, const std::string& fallback,
+                             std::initializer_list<std::string_view> choices) const {
+  const std::string value = string(key, fallback);
+  if (std::find(choices.begin(), choices.end(), value) == choices.end()) {
+    throw error(key, "expected one of " + list(choices) + ", got '" + value + "'");
+  }
+  return value;
+}
+
+Eigen::VectorXd Settings::vector(const std::string& key, const Eigen::VectorXd& fallback, Eigen::Index size,
+                                 double min, double max) const {
+  if (!has(key)) return fallback;
+  const YAML::Node node = node_[key];
+  if (!node.IsSequence()) {
+    throw error(key, "expected a sequence of " + std::to_string(size) + " numbers, got " + kind_of(node));
+  }
+  if (static_cast<Eigen::Index>(node.size()) != size) {
+    throw error(key, "expected " + std::to_string(size) + " entries, got " + std::to_string(node.size()));
+  }
+  Eigen::VectorXd values(size);
+  for (Eigen::Index i = 0; i < size; ++i) {
+    values(i) = entry(node[static_cast<std::size_t>(i)], field_name(key) + "[" + std::to_string(i) + "]", min, max);
+  }
+  return values;
+}
+
+Eigen::MatrixXd Settings::diagonal_weight(const std::string& key, const Eigen::VectorXd& fallback_diagonal,
+                                          Weight kind) const {
+  const Eigen::Index size = fallback_diagonal.size();
+  const Eigen::VectorXd diagonal = vector(key, fallback_diagonal, size, 0.0);
+  if (kind == Weight::positive_definite) {
+    for (Eigen::Index i = 0; i < size; ++i) {
+      if (!(diagonal(i) > 0.0)) {
+        const YAML::Node node = has(key) ? node_[key][static_cast<std::size_t>(i)] : YAML::Node();
+        throw SettingsError(field_name(key) + "[" + std::to_string(i) + "]",
+                            "expected a positive number (the weight must be positive definite), got " +
+                                std::to_string(diagonal(i)),
+                            node.Mark());
+      }
+    }
+  }
+  return diagonal.asDiagonal();
+}
+
+}  // namespace thetad

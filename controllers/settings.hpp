@@ -1,0 +1,108 @@
+#pragma once
+
+// Reading a controller's settings block (a YAML map) with one set of rules and one error format,
+// so that every controller accepts and rejects its settings the same way:
+//  - a missing field takes its default; a field that is present must be valid (no silent fallback);
+//  - an unknown field is an error that lists the allowed ones (a typo never goes unnoticed);
+//  - every error is a SettingsError: "<file>:<line>:<column>: field '<name>': <reason>", with the
+//    1-based position of the offending node (of the enclosing map when the field is missing).
+//
+// A factory does not know which file its block came from; the caller that does (the command line)
+// adds it with with_settings_source().
+
+#include <initializer_list>
+#include <limits>
+#include <string>
+#include <string_view>
+#include <type_traits>
+#include <utility>
+
+#include <Eigen/Core>
+#include <yaml-cpp/yaml.h>
+
+#include "core/error.hpp"
+
+namespace thetad {
+
+class SettingsError : public Error {
+ public:
+  // `mark` is yaml-cpp's 0-based position; a null mark (a node not loaded from text) prints none.
+  SettingsError(std::string field, std::string reason, const YAML::Mark& mark, std::string source = {});
+
+  const std::string& field() const { return field_; }
+  const std::string& reason() const { return reason_; }
+  // 1-based line and column, 0 when unknown.
+  int line() const { return mark_.is_null() ? 0 : mark_.line + 1; }
+  int column() const { return mark_.is_null() ? 0 : mark_.column + 1; }
+  const std::string& source() const { return source_; }
+
+  // The same error, located in the file `source`.
+  SettingsError in_source(std::string source) const { return {field_, reason_, mark_, std::move(source)}; }
+
+ private:
+  std::string field_;
+  std::string reason_;
+  YAML::Mark mark_;
+  std::string source_;
+};
+
+// Runs `read` (e.g. a ControllerRegistry::make on a block of `source`) and rethrows a SettingsError
+// escaping it with `source` as its file name, so the message reads
+// "scenario-1.yaml:12:5: field 'Q': expected 18 entries, got 17".
+template <class Read>
+decltype(auto) with_settings_source(const std::string& source, Read&& read) {
+  try {
+    return std::forward<Read>(read)();
+  } catch (const SettingsError& error) {
+    throw error.in_source(source);
+  }
+}
+
+// One settings block. Getters take the field's key and its default; the node must be a map or
+// null/undefined (no settings: every default).
+class Settings {
+ public:
+  // `path` prefixes field names in messages ("controller.Q"); empty for a top-level block.
+  explicit Settings(const YAML::Node& node, std::string path = {});
+
+  // Throws on the first key of the map that is not in `allowed`, naming it and listing `allowed`.
+  void allow_only(std::initializer_list<std::string_view> allowed) const;
+
+  bool has(const std::string& key) const;
+
+  // A finite number in [min, max].
+  double number(const std::string& key, double fallback, double min = -inf(), double max = inf()) const;
+  // An integer in [min, max] ("3.0" is not an integer).
+  int integer(const std::string& key, int fallback, int min = std::numeric_limits<int>::min(),
+              int max = std::numeric_limits<int>::max()) const;
+  // true/false (also yes/no, on/off as YAML 1.1 reads them).
+  bool boolean(const std::string& key, bool fallback) const;
+  std::string string(const std::string& key, const std::string& fallback) const;
+  // A string that must be one of `choices` (listed in the message otherwise).
+  std::string choice(const std::string& key, const std::string& fallback,
+                     std::initializer_list<std::string_view> choices) const;
+  // A sequence of exactly `size` finite numbers, each in [min, max].
+  Eigen::VectorXd vector(const std::string& key, const Eigen::VectorXd& fallback, Eigen::Index size,
+                         double min = -inf(), double max = inf()) const;
+
+  // A diagonal weight matrix given by its diagonal (`Q: [1e4, 2e4, ...]`) of fallback.size()
+  // entries: every entry >= 0 for a state weight (Q), > 0 for an input weight (R) so that R is
+  // positive definite.
+  enum class Weight { positive_semidefinite, positive_definite };
+  Eigen::MatrixXd diagonal_weight(const std::string& key, const Eigen::VectorXd& fallback_diagonal,
+                                  Weight kind) const;
+
+  // The error for `key`, positioned at its node (or at the block when the key is missing); for
+  // checks only the caller can make (e.g. between fields).
+  SettingsError error(const std::string& key, const std::string& reason) const;
+
+ private:
+  static constexpr double inf() { return std::numeric_limits<double>::infinity(); }
+  std::string field_name(const std::string& key) const;
+  double entry(const YAML::Node& node, const std::string& field, double min, double max) const;
+
+  YAML::Node node_;
+  std::string path_;
+};
+
+}  // namespace thetad

@@ -1,0 +1,250 @@
+#include "scenarios/scenario.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include <yaml-cpp/yaml.h>
+
+#include "controllers/settings.hpp"
+#include "core/error.hpp"
+#include "core/helicopter/state.hpp"
+
+namespace thetad {
+
+namespace {
+
+std::string seconds(double t) {
+  std::ostringstream text;
+  text << t << " s";
+  return text.str();
+}
+
+// The value of `key` in `map`, or an undefined node (a Settings block with every default) when the
+// key is absent: yaml-cpp's const lookup of a missing key gives an invalid node instead.
+YAML::Node child(const YAML::Node& map, const char* key) {
+  return map.IsMap() && map[key] ? map[key] : YAML::Node();
+}
+
+void require(const Settings& block, const std::string& key) {
+  if (!block.has(key)) throw block.error(key, "missing (required)");
+}
+
+double positive(const Settings& block, const std::string& key) {
+  require(block, key);
+  const double value = block.number(key, 0.0);
+  if (!(value > 0.0)) throw block.error(key, "must be > 0");
+  return value;
+}
+
+// [x, y, h] with h the altitude (up, >= 0: the ground) as NED [x, y, -h].
+Eigen::Vector3d position(const Settings& block, const std::string& key, const Eigen::Vector3d& fallback_ned) {
+  const Eigen::Vector3d fallback(fallback_ned.x(), fallback_ned.y(), -fallback_ned.z());
+  const Eigen::Vector3d xyh = block.vector(key, fallback, 3);
+  if (xyh.z() < 0.0) throw block.error(key, "altitude h (the third entry) must be >= 0: the ground is h = 0");
+  return {xyh.x(), xyh.y(), -xyh.z()};
+}
+
+Motion read_motion(const Settings& phase, const std::string& type) {
+  if (type == "hold") {
+    phase.allow_only({"name", "type", "time"});
+    return Hold{};
+  }
+  if (type == "ramp" || type == "step" || type == "blend") {
+    phase.allow_only({"name", "type", "time", "to"});
+    require(phase, "to");
+    const Eigen::Vector3d to = position(phase, "to", Eigen::Vector3d::Zero());
+    if (type == "ramp") return Ramp{to};
+    if (type == "step") return Step{to};
+    return Blend{to};
+  }
+  if (type == "sinusoid") {
+    phase.allow_only({"name", "type", "time", "amplitude", "period"});
+    require(phase, "amplitude");
+    const Eigen::Vector3d xyh = phase.vector("amplitude", Eigen::Vector3d::Zero(), 3);
+    return Sinusoid{{xyh.x(), xyh.y(), -xyh.z()}, positive(phase, "period")};
+  }
+  if (type == "figure8") {
+    phase.allow_only({"name", "type", "time", "amplitude_x", "amplitude_y", "period"});
+    return FigureEight{positive(phase, "amplitude_x"), positive(phase, "amplitude_y"), positive(phase, "period")};
+  }
+  phase.allow_only({"name", "type", "time", "radius", "period", "altitude_change", "direction"});
+  const double radius = positive(phase, "radius");
+  const double period = positive(phase, "period");
+  const double descent = phase.number("altitude_change", 0.0);
+  const bool counterclockwise =
+      phase.choice("direction", "counterclockwise", {"counterclockwise", "clockwise"}) == "counterclockwise";
+  return Circle{radius, period, descent, counterclockwise};
+}
+
+// Phases back to back from 0; returns the end of the last one.
+double read_phases(const YAML::Node& root, PhasedTrajectory& trajectory) {
+  const Settings top(root);
+  require(top, "phases");
+  const YAML::Node phases = root["phases"];
+  if (!phases.IsSequence() || phases.size() == 0) throw top.error("phases", "expected a non-empty list of phases");
+
+  std::string previous;
+  for (std::size_t i = 0; i < phases.size(); ++i) {
+    const Settings indexed(phases[i], "phases[" + std::to_string(i) + "]");
+    require(indexed, "type");
+    const std::string type =
+        indexed.choice("type", "", {"hold", "ramp", "step", "blend", "sinusoid", "figure8", "circle"});
+    const std::string name = indexed.string("name", type);
+    const Settings phase(phases[i], "phases." + name);
+
+    require(phase, "time");
+    const Eigen::Vector2d time = phase.vector("time", Eigen::Vector2d::Zero(), 2, 0.0);
+    const double start = time(0), end = time(1);
+    if (!(end > start)) throw phase.error("time", "ends at " + seconds(end) + ", not after its start " + seconds(start));
+    const double expected_start = trajectory.end_time();
+    if (i == 0 && start != 0.0) throw phase.error("time", "the first phase must start at 0 s, not " + seconds(start));
+    if (start < expected_start) {
+      throw phase.error("time", "starts at " + seconds(start) + ", before phase '" + previous + "' ends at " +
+                                    seconds(expected_start) + " (phases must be in time order and must not overlap)");
+    }
+    if (start > expected_start) {
+      throw phase.error("time", "starts at " + seconds(start) + ", leaving a gap after phase '" + previous +
+                                    "' which ends at " + seconds(expected_start) + " (phases must be back to back)");
+    }
+    trajectory.append(name, end, read_motion(phase, type));
+    previous = name;
+  }
+  return trajectory.end_time();
+}
+
+Eigen::VectorXd read_initial_state(const YAML::Node& root) {
+  using namespace heli;
+  Eigen::VectorXd x0 = Eigen::VectorXd::Zero(kStateDim);
+  x0(kS) = 1.0;
+  const Settings initial(child(root, "initial_state"), "initial_state");
+  initial.allow_only({"position", "velocity", "attitude", "rates", "flapping"});
+  x0.segment<3>(kXp) = position(initial, "position", Eigen::Vector3d::Zero());
+  x0.segment<3>(kU) = initial.vector("velocity", Eigen::Vector3d::Zero(), 3);
+  x0.segment<3>(kPhi) = initial.vector("attitude", Eigen::Vector3d::Zero(), 3);
+  x0.segment<3>(kP) = initial.vector("rates", Eigen::Vector3d::Zero(), 3);
+  x0.segment<2>(kA1) = initial.vector("flapping", Eigen::Vector2d::Zero(), 2);
+  return x0;
+}
+
+std::optional<bool> optional_boolean(const Settings& block, const std::string& key) {
+  if (!block.has(key)) return std::nullopt;
+  return block.boolean(key, false);
+}
+
+heli::ModelOptions read_model(const YAML::Node& node) {
+  const Settings model(node, "simulation.model");
+  heli::ModelOptions options = heli::ModelOptions::preset(model.choice("preset", "resolved", {"resolved", "paper"}));
+  if (!node.IsMap()) return options;
+  for (const auto& item : node) {
+    const std::string key = item.first.Scalar();
+    if (key == "preset") continue;
+    const bool known = std::find(heli::ModelOptions::names.begin(), heli::ModelOptions::names.end(), key) !=
+                       heli::ModelOptions::names.end();
+    if (!known) {
+      std::string allowed = "preset";
+      for (const auto name : heli::ModelOptions::names) allowed += ", " + std::string(name);
+      throw SettingsError("simulation.model." + key, "unknown field (allowed: " + allowed + ")", item.first.Mark());
+    }
+    if (!item.second.IsScalar()) throw model.error(key, "expected a value, got a list or a map");
+    try {
+      options.set(key, item.second.Scalar());
+    } catch (const Error& error) {
+      throw model.error(key, error.what());
+    }
+  }
+  return options;
+}
+
+void read_simulation(const YAML::Node& root, Scenario& scenario) {
+  const YAML::Node node = child(root, "simulation");
+  const Settings simulation(node, "simulation");
+  simulation.allow_only({"dt", "controller_period_steps", "seed", "disturbances", "model"});
+  if (simulation.has("dt")) scenario.dt = positive(simulation, "dt");
+  if (simulation.has("controller_period_steps"))
+    scenario.controller_period_steps = simulation.integer("controller_period_steps", 1, 1);
+  if (simulation.has("seed")) scenario.seed = static_cast<std::uint64_t>(simulation.integer("seed", 1, 0));
+
+  const Settings disturbances(child(node, "disturbances"), "simulation.disturbances");
+  disturbances.allow_only({"parameter_uncertainty", "wind_gust", "measurement_noise", "measurement_noise_on",
+                           "actuator_noise", "wind_noise", "induced_velocity_noise"});
+  scenario.parameter_uncertainty = optional_boolean(disturbances, "parameter_uncertainty");
+  scenario.wind_gust = optional_boolean(disturbances, "wind_gust");
+  scenario.measurement_noise = optional_boolean(disturbances, "measurement_noise");
+  if (disturbances.has("measurement_noise_on")) {
+    scenario.measurement_noise_on =
+        disturbances.choice("measurement_noise_on", "", {"feedback_signal", "absolute_state"}) == "feedback_signal"
+            ? sim::MeasurementNoiseOn::feedback_signal
+            : sim::MeasurementNoiseOn::absolute_state;
+  }
+  scenario.actuator_noise = optional_boolean(disturbances, "actuator_noise");
+  scenario.wind_noise = optional_boolean(disturbances, "wind_noise");
+  scenario.induced_velocity_noise = optional_boolean(disturbances, "induced_velocity_noise");
+
+  scenario.model_options = read_model(child(node, "model"));
+}
+
+Scenario read_scenario(const YAML::Node& root, const std::string& source) {
+  if (!root.IsMap()) throw SettingsError("scenario", "expected a map of fields", root.Mark());
+  const Settings top(root);
+  top.allow_only({"name", "description", "duration", "initial_state", "phases", "simulation"});
+
+  Scenario scenario;
+  scenario.source = source;
+  scenario.name = top.string("name", std::filesystem::path(source).stem().string());
+  scenario.description = top.string("description", "");
+  scenario.duration = positive(top, "duration");
+  scenario.initial_state = read_initial_state(root);
+  scenario.trajectory = PhasedTrajectory(scenario.initial_state.segment<3>(heli::kXp));
+  const double end = read_phases(root, scenario.trajectory);
+  if (end != scenario.duration) {
+    throw top.error("duration", seconds(scenario.duration) + ", but the phases end at " + seconds(end) +
+                                    " (the last phase must end at the duration)");
+  }
+  read_simulation(root, scenario);
+  return scenario;
+}
+
+}  // namespace
+
+sim::SimulationSettings Scenario::simulation_settings(sim::SimulationSettings base) const {
+  base.duration = duration;
+  if (dt) base.dt = *dt;
+  if (controller_period_steps) base.controller_period_steps = *controller_period_steps;
+  if (seed) base.seed = *seed;
+  if (parameter_uncertainty) base.parameter_uncertainty = *parameter_uncertainty;
+  if (wind_gust) base.wind_gust.enabled = *wind_gust;
+  if (measurement_noise) base.noise.measurement = *measurement_noise;
+  if (measurement_noise_on) base.noise.measurement_on = *measurement_noise_on;
+  if (actuator_noise) base.noise.actuator = *actuator_noise;
+  if (wind_noise) base.noise.wind_component = *wind_noise;
+  if (induced_velocity_noise) base.noise.induced_velocity = *induced_velocity_noise;
+  return base;
+}
+
+Scenario parse_scenario(const std::string& text, const std::string& source) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::Exception& error) {
+    // yaml-cpp's what() already carries "line L, column C" (0-based); print ours, 1-based.
+    std::ostringstream message;
+    message << source << ":" << error.mark.line + 1 << ":" << error.mark.column + 1 << ": invalid YAML: " << error.msg;
+    throw Error(message.str());
+  }
+  return with_settings_source(source, [&] { return read_scenario(root, source); });
+}
+
+Scenario load_scenario(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw Error("cannot read scenario file " + file.string() + ": " + std::strerror(errno));
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw Error("cannot read scenario file " + file.string() + ": read error");
+  return parse_scenario(text.str(), file.string());
+}
+
+}  // namespace thetad

@@ -1,0 +1,55 @@
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include <Eigen/Core>
+
+#include "core/helicopter/model_options.hpp"
+#include "core/sim/noise.hpp"
+#include "core/sim/simulator.hpp"
+#include "scenarios/trajectory.hpp"
+
+namespace thetad {
+
+// What to fly (docs/scenarios.md describes the file format): a commanded trajectory made of
+// phases, the initial state, and the simulation settings the scenario needs. Everything not set
+// by the file keeps the paper's setting (sim::SimulationSettings::paper(), resolved model preset).
+struct Scenario {
+  std::string name;
+  std::string description;
+  std::string source;  // the file it was read from ("" when parsed from text)
+  double duration = 0.0;  // s; equals the end of the last phase
+  // The 18-state xa(t0); by default at rest on the ground, level, s = 1 (spec §7.1).
+  Eigen::VectorXd initial_state;
+  PhasedTrajectory trajectory;
+  heli::ModelOptions model_options;
+
+  // Overrides of the simulation settings; unset keeps the base value.
+  std::optional<double> dt;
+  std::optional<int> controller_period_steps;
+  std::optional<std::uint64_t> seed;
+  std::optional<bool> parameter_uncertainty;
+  std::optional<bool> wind_gust;
+  std::optional<bool> measurement_noise;
+  std::optional<sim::MeasurementNoiseOn> measurement_noise_on;
+  std::optional<bool> actuator_noise;
+  std::optional<bool> wind_noise;              // Table 1 #26-28
+  std::optional<bool> induced_velocity_noise;  // Table 1 #29-30
+
+  // `base` with this scenario's duration and overrides applied.
+  sim::SimulationSettings simulation_settings(sim::SimulationSettings base = sim::SimulationSettings::paper()) const;
+};
+
+// Reads a scenario file. Every problem throws thetad::Error with one line that names the file,
+// the 1-based line and column, the field and the reason
+// ("scenarios/scenario-1.yaml:14:7: field 'phases.figure8.period': must be > 0"); a file that
+// cannot be read names the file and the system's reason.
+Scenario load_scenario(const std::filesystem::path& file);
+
+// The same from text; `source` names it in messages and Scenario::source.
+Scenario parse_scenario(const std::string& text, const std::string& source);
+
+}  // namespace thetad

@@ -1,0 +1,128 @@
+#include "scenarios/trajectory.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "core/error.hpp"
+
+namespace thetad {
+
+namespace {
+
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
+
+template <class... Ts>
+struct Overloaded : Ts... {
+  using Ts::operator()...;
+};
+
+void require_period(const std::string& phase, const char* type, double period) {
+  if (!(period > 0.0) || !std::isfinite(period))
+    throw Error("phase '" + phase + "' (" + type + "): period must be positive and finite");
+}
+
+void require_finite(const std::string& phase, const char* type, const char* what, double value) {
+  if (!std::isfinite(value)) throw Error("phase '" + phase + "' (" + type + "): " + what + " must be finite");
+}
+
+void validate(const std::string& phase, const Motion& motion) {
+  const char* type = motion_type(motion);
+  const auto finite_vector = [&](const char* what, const Eigen::Vector3d& v) {
+    if (!v.allFinite()) throw Error("phase '" + phase + "' (" + type + "): " + what + " must be finite");
+  };
+  std::visit(Overloaded{
+                 [](const Hold&) {},
+                 [&](const Ramp& m) { finite_vector("target", m.to); },
+                 [&](const Step& m) { finite_vector("target", m.to); },
+                 [&](const Blend& m) { finite_vector("target", m.to); },
+                 [&](const Sinusoid& m) {
+                   finite_vector("amplitude", m.amplitude);
+                   require_period(phase, type, m.period);
+                 },
+                 [&](const FigureEight& m) {
+                   require_finite(phase, type, "amplitude_x", m.amplitude_x);
+                   require_finite(phase, type, "amplitude_y", m.amplitude_y);
+                   require_period(phase, type, m.period);
+                 },
+                 [&](const Circle& m) {
+                   require_finite(phase, type, "radius", m.radius);
+                   require_finite(phase, type, "descent", m.descent);
+                   require_period(phase, type, m.period);
+                 },
+             },
+             motion);
+}
+
+}  // namespace
+
+Eigen::Vector3d Hold::position(const Eigen::Vector3d& start, double, double) const { return start; }
+
+Eigen::Vector3d Ramp::position(const Eigen::Vector3d& start, double tau, double duration) const {
+  const double fraction = std::clamp(tau / duration, 0.0, 1.0);
+  return start + fraction * (to - start);
+}
+
+Eigen::Vector3d Step::position(const Eigen::Vector3d&, double, double) const { return to; }
+
+Eigen::Vector3d Blend::position(const Eigen::Vector3d& start, double tau, double duration) const {
+  const double sigma = std::clamp(tau / duration, 0.0, 1.0);
+  const double s = sigma * sigma * sigma * (10.0 + sigma * (-15.0 + 6.0 * sigma));
+  return start + s * (to - start);
+}
+
+Eigen::Vector3d Sinusoid::position(const Eigen::Vector3d& start, double tau, double) const {
+  return start + std::sin(kTwoPi * tau / period) * amplitude;
+}
+
+Eigen::Vector3d FigureEight::position(const Eigen::Vector3d& start, double tau, double) const {
+  const double angle = kTwoPi * tau / period;
+  return start + Eigen::Vector3d(amplitude_x * std::sin(angle), -amplitude_y * std::sin(2.0 * angle), 0.0);
+}
+
+Eigen::Vector3d Circle::position(const Eigen::Vector3d& start, double tau, double) const {
+  const double angle = kTwoPi * tau / period;
+  const double lateral = (counterclockwise ? 1.0 : -1.0) * radius * (1.0 - std::cos(angle));
+  // Altitude h = h0 − (Δh/2)(1 − cos ωτ), so z = −h rises by the same amount.
+  const double down = 0.5 * descent * (1.0 - std::cos(angle));
+  return start + Eigen::Vector3d(radius * std::sin(angle), lateral, down);
+}
+
+const char* motion_type(const Motion& motion) {
+  return std::visit(Overloaded{
+                        [](const Hold&) { return "hold"; },
+                        [](const Ramp&) { return "ramp"; },
+                        [](const Step&) { return "step"; },
+                        [](const Blend&) { return "blend"; },
+                        [](const Sinusoid&) { return "sinusoid"; },
+                        [](const FigureEight&) { return "figure8"; },
+                        [](const Circle&) { return "circle"; },
+                    },
+                    motion);
+}
+
+Eigen::Vector3d PhasedTrajectory::Phase::position(double t) const {
+  const double tau = std::clamp(t - start_time, 0.0, end_time - start_time);
+  return std::visit([&](const auto& m) { return m.position(start_position, tau, end_time - start_time); }, motion);
+}
+
+void PhasedTrajectory::append(std::string name, double end_time, const Motion& motion) {
+  const double start_time = this->end_time();
+  if (!(end_time > start_time) || !std::isfinite(end_time))
+    throw Error("phase '" + name + "': must end after it starts (" + std::to_string(start_time) + " s), got " +
+                std::to_string(end_time) + " s");
+  validate(name, motion);
+  const Eigen::Vector3d start_position = end_position();
+  phases_.push_back({std::move(name), start_time, end_time, start_position, motion});
+}
+
+Eigen::Vector3d PhasedTrajectory::position(double t) const {
+  if (phases_.empty()) return start_;
+  // The phase that contains t: the first whose end lies beyond t (a boundary belongs to the later
+  // phase, so a step takes effect at its start time); past the end, the last phase.
+  const auto it = std::upper_bound(phases_.begin(), phases_.end(), t,
+                                   [](double time, const Phase& phase) { return time < phase.end_time; });
+  return it == phases_.end() ? phases_.back().end_position() : it->position(t);
+}
+
+}  // namespace thetad

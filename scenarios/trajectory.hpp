@@ -1,0 +1,114 @@
+#pragma once
+
+#include <string>
+#include <variant>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "core/sim/control_law.hpp"
+
+namespace thetad {
+
+// Trajectory primitives (spec §8.1: "combinations of ramps, sinusoidal waves, and step inputs in
+// three directions"; §8.4). Each one is a motion relative to where its phase starts: it gets the
+// start position, the time since the phase began (tau) and the phase's duration, and returns the
+// commanded position. Positions are NED (z down, altitude h = -z); the scenario files speak of h
+// and the loader converts. A motion that starts at its start position (all but Step) keeps the
+// command continuous at the phase boundary; velocity jumps there are intended (spec §8.4).
+
+// Stays at the start position.
+struct Hold {
+  Eigen::Vector3d position(const Eigen::Vector3d& start, double tau, double duration) const;
+};
+
+// Straight line at constant speed from the start to `to`, reached at the end of the phase.
+struct Ramp {
+  Eigen::Vector3d to = Eigen::Vector3d::Zero();
+  Eigen::Vector3d position(const Eigen::Vector3d& start, double tau, double duration) const;
+};
+
+// Jumps to `to` at the start of the phase and stays there: the only deliberate discontinuity.
+struct Step {
+  Eigen::Vector3d to = Eigen::Vector3d::Zero();
+  Eigen::Vector3d position(const Eigen::Vector3d& start, double tau, double duration) const;
+};
+
+// Quintic blend from the start to `to` over the phase: s(σ) = 10σ³ − 15σ⁴ + 6σ⁵, σ = tau/duration,
+// so velocity and acceleration are zero at both ends (a smooth transition between two points).
+struct Blend {
+  Eigen::Vector3d to = Eigen::Vector3d::Zero();
+  Eigen::Vector3d position(const Eigen::Vector3d& start, double tau, double duration) const;
+};
+
+// start + amplitude · sin(2π tau / period), per axis: back at the start after whole periods.
+struct Sinusoid {
+  Eigen::Vector3d amplitude = Eigen::Vector3d::Zero();  // NED (m)
+  double period = 1.0;                                  // s
+  Eigen::Vector3d position(const Eigen::Vector3d& start, double tau, double duration) const;
+};
+
+// The figure 8 of scenario I (spec §8.4): x = x0 + A_x sin(ωτ), y = y0 − A_y sin(2ωτ), ω = 2π/T8,
+// at constant altitude. It crosses itself at the start point and moves first towards −y and +x;
+// speed at the crossing ω·sqrt(A_x² + 4A_y²), at the lobe ends 2ωA_y.
+struct FigureEight {
+  double amplitude_x = 8.0;  // A_x (m)
+  double amplitude_y = 4.0;  // A_y (m)
+  double period = 50.0;      // T8 (s)
+  Eigen::Vector3d position(const Eigen::Vector3d& start, double tau, double duration) const;
+};
+
+// The circle of scenario II (spec §8.4): x = x0 + R sin(ωτ), y = y0 ± R(1 − cos ωτ), ω = 2π/T_c,
+// with the altitude dipping by `descent` at the half circle: h = h0 − (Δh/2)(1 − cos ωτ).
+// Counterclockwise (+) means the polar angle about the centre (x0, y0 + R) increases, i.e.
+// counterclockwise in an x-right / y-up plot: first motion +x, then +y. Speed Rω horizontally.
+struct Circle {
+  double radius = 15.0;    // R_c (m)
+  double period = 60.0;    // T_c (s)
+  double descent = 2.0;    // Δh (m): lowest point Δh below the start altitude
+  bool counterclockwise = true;
+  Eigen::Vector3d position(const Eigen::Vector3d& start, double tau, double duration) const;
+};
+
+using Motion = std::variant<Hold, Ramp, Step, Blend, Sinusoid, FigureEight, Circle>;
+
+// The name of a motion's alternative as the scenario files spell it ("hold", "figure8", ...).
+const char* motion_type(const Motion& motion);
+
+// A piecewise-in-time command: phases back to back from t = 0, each a Motion that starts where the
+// previous phase ended (the first where the trajectory starts). Before 0 it gives the start,
+// after the last phase the last phase's final position.
+class PhasedTrajectory final : public sim::ReferenceTrajectory {
+ public:
+  struct Phase {
+    std::string name;
+    double start_time = 0.0;
+    double end_time = 0.0;
+    Eigen::Vector3d start_position = Eigen::Vector3d::Zero();  // NED
+    Motion motion;
+
+    Eigen::Vector3d position(double t) const;
+    Eigen::Vector3d end_position() const { return position(end_time); }
+  };
+
+  explicit PhasedTrajectory(const Eigen::Vector3d& start = Eigen::Vector3d::Zero()) : start_(start) {}
+
+  // Adds a phase from end_time() to `end_time`. Throws thetad::Error unless end_time > end_time()
+  // and the motion's parameters are valid (positive, finite periods; finite positions).
+  void append(std::string name, double end_time, const Motion& motion);
+
+  // NED command; the hot path of the simulator: no allocation.
+  Eigen::Vector3d position(double t) const override;
+
+  const std::vector<Phase>& phases() const { return phases_; }
+  const Eigen::Vector3d& start_position() const { return start_; }
+  // End of the last phase (0 without phases).
+  double end_time() const { return phases_.empty() ? 0.0 : phases_.back().end_time; }
+  Eigen::Vector3d end_position() const { return phases_.empty() ? start_ : phases_.back().end_position(); }
+
+ private:
+  Eigen::Vector3d start_;
+  std::vector<Phase> phases_;
+};
+
+}  // namespace thetad

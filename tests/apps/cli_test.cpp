@@ -1,0 +1,149 @@
+// Runs the built thetad program (THETAD_BINARY) the way a user does.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+using ::testing::Not;
+
+std::string read(const fs::path& file) {
+  std::ifstream in(file);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+void write(const fs::path& file, const std::string& text) { std::ofstream(file) << text; }
+
+struct Output {
+  int status = -1;
+  std::string out;
+  std::string err;
+};
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("thetad_cli_test_" + std::to_string(::getpid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    // A 2 s hold on the ground: the shortest flight that exercises every step of a run.
+    write(dir_ / "hover.yaml", "name: tiny\nduration: 2\nphases:\n  - name: hover\n    type: hold\n    time: [0, 2]\n");
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  // thetad with `arguments` (a shell command line tail), CI set so progress comes as plain lines.
+  Output thetad(const std::string& arguments) const {
+    const std::string command = "CI=1 " + std::string(THETAD_BINARY) + " " + arguments + " >" +
+                                (dir_ / "stdout.txt").string() + " 2>" + (dir_ / "stderr.txt").string();
+    const int raw = std::system(command.c_str());
+    Output output;
+    output.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    output.out = read(dir_ / "stdout.txt");
+    output.err = read(dir_ / "stderr.txt");
+    return output;
+  }
+
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+
+  fs::path dir_;
+};
+
+TEST_F(Cli, ListShowsTheRegisteredControllers) {
+  const Output output = thetad("list");
+  EXPECT_EQ(output.status, 0) << output.err;
+  EXPECT_THAT(output.out, HasSubstr("lqr "));
+  EXPECT_THAT(output.out, HasSubstr("example-pid "));
+}
+
+TEST_F(Cli, RunWritesTheLogAndAParsableSummary) {
+  const Output output = thetad("run --scenario " + path("hover.yaml") + " --controller lqr --ideal --out " + path("out"));
+  ASSERT_EQ(output.status, 0) << output.err;
+  EXPECT_THAT(output.out, HasSubstr("lqr on tiny (2 s, seed 1, ideal"));
+  EXPECT_THAT(output.out, HasSubstr("completed"));
+  EXPECT_THAT(output.err, HasSubstr("lqr: flying tiny"));
+  ASSERT_TRUE(fs::exists(dir_ / "out" / "lqr.csv"));
+  const nlohmann::json summary = nlohmann::json::parse(read(dir_ / "out" / "lqr.json"));
+  EXPECT_EQ(summary["controller"], "lqr");
+  EXPECT_EQ(summary["status"], "completed");
+  EXPECT_EQ(summary["controller_samples"], 2000);
+  EXPECT_EQ(summary["settings"]["wind_gust"]["enabled"], false);
+}
+
+TEST_F(Cli, CompareFliesEachControllerAndPrintsTheTable) {
+  const Output output = thetad("compare --scenario " + path("hover.yaml") + " --controllers lqr,example-pid --seed 3 --out " +
+                               path("out"));
+  ASSERT_EQ(output.status, 0) << output.err;
+  EXPECT_THAT(output.out, HasSubstr("tiny (2 s, seed 3, all disturbances"));
+  EXPECT_THAT(output.out, HasSubstr("controller"));
+  EXPECT_THAT(output.out, HasSubstr("RMS position error (m)"));
+  EXPECT_THAT(output.out, HasSubstr("\nlqr "));
+  EXPECT_THAT(output.out, HasSubstr("\nexample-pid "));
+  EXPECT_THAT(output.err, HasSubstr("[1/2] lqr:"));
+  EXPECT_THAT(output.err, HasSubstr("[2/2] example-pid:"));
+  const nlohmann::json comparison = nlohmann::json::parse(read(dir_ / "out" / "comparison.json"));
+  EXPECT_EQ(comparison["seed"], 3);
+  ASSERT_EQ(comparison["runs"].size(), 2u);
+  EXPECT_EQ(comparison["runs"][1]["controller"], "example-pid");
+  EXPECT_EQ(comparison["runs"][1]["summary"]["seed"], 3);
+  // The same seed: the same perturbed plant for both controllers.
+  EXPECT_EQ(comparison["runs"][0]["summary"]["parameter_factors"], comparison["runs"][1]["summary"]["parameter_factors"]);
+  EXPECT_TRUE(fs::exists(dir_ / "out" / "example-pid.csv"));
+}
+
+TEST_F(Cli, ABadScenarioFieldIsOneLineWithFileLineAndFieldAndWritesNothing) {
+  write(dir_ / "bad.yaml",
+        "duration: 50\nphases:\n  - name: eight\n    type: figure8\n    time: [0, 50]\n    amplitude_x: 8\n"
+        "    amplitude_y: 4\n    period: 0\n");
+  const Output output = thetad("compare --scenario " + path("bad.yaml") + " --controllers lqr,example-pid --out " + path("out"));
+  EXPECT_NE(output.status, 0);
+  EXPECT_EQ(output.err, "thetad: error: " + path("bad.yaml") + ":8:13: field 'phases.eight.period': must be > 0\n");
+  EXPECT_FALSE(fs::exists(dir_ / "out"));
+}
+
+TEST_F(Cli, ABadSettingsFileNamesFileLineAndFieldAndWritesNothing) {
+  write(dir_ / "settings.yaml", "lqr:\n  R: [1, 200, 1e7, 1e5]\n");
+  Output output = thetad("run --scenario " + path("hover.yaml") + " --controller lqr --settings " + path("settings.yaml") +
+                         " --out " + path("out"));
+  EXPECT_NE(output.status, 0);
+  EXPECT_THAT(output.err, HasSubstr(path("settings.yaml") + ":2:6: field 'R': expected 5 entries, got 4"));
+  EXPECT_FALSE(fs::exists(dir_ / "out"));
+
+  write(dir_ / "settings.yaml", "lqr: {}\nthetad: {}\n");
+  output = thetad("run --scenario " + path("hover.yaml") + " --controller lqr --settings " + path("settings.yaml") +
+                  " --out " + path("out"));
+  EXPECT_NE(output.status, 0);
+  EXPECT_THAT(output.err, HasSubstr(path("settings.yaml") + ":2:1: field 'thetad': unknown controller (known: "));
+  EXPECT_FALSE(fs::exists(dir_ / "out"));
+}
+
+TEST_F(Cli, BadArgumentsAreOneLine) {
+  Output output = thetad("compare --scenario " + path("hover.yaml") + " --controllers lqr,nonesuch --out " + path("out"));
+  EXPECT_NE(output.status, 0);
+  EXPECT_THAT(output.err, HasSubstr("unknown controller 'nonesuch'"));
+  EXPECT_FALSE(fs::exists(dir_ / "out"));
+
+  output = thetad("run --scenario " + path("missing.yaml") + " --controller lqr --out " + path("out"));
+  EXPECT_NE(output.status, 0);
+  EXPECT_EQ(output.err, "thetad: error: cannot read scenario file " + path("missing.yaml") + ": No such file or directory\n");
+
+  output = thetad("run --scenario " + path("hover.yaml") + " --out " + path("out"));
+  EXPECT_NE(output.status, 0);
+  EXPECT_EQ(output.err, "thetad: error: --controller is required (see --help)\n");
+  EXPECT_THAT(output.out, Not(HasSubstr("Usage")));
+}
+
+}  // namespace
