@@ -26,8 +26,10 @@ build: deps
 test: build
 	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
 
+# The quick diagnostics first, then scenario I with every disturbance of the paper (seed 1).
 demo: build
 	$(BUILD_DIR)/apps/thetad demo --out $(OUT)
+	$(BUILD_DIR)/apps/thetad compare --scenario scenarios/scenario-1.yaml --controllers theta-d,sdre,lqr --seed 1 --out $(OUT)/scenario-1
 
 # Benchmarks are built separately with -march=native (see docs/performance.md).
 bench: deps

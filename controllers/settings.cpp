@@ -33,11 +33,13 @@ std::string list(std::initializer_list<std::string_view> names) {
   return joined;
 }
 
-std::string interval(double min, double max) {
-  std::ostringstream text;
-  text << "[" << min << ", " << max << "]";
-  return text.str();
+std::string text(double value) {
+  std::ostringstream stream;
+  stream << value;
+  return stream.str();
 }
+
+std::string interval(double min, double max) { return "[" + text(min) + ", " + text(max) + "]"; }
 
 }  // namespace
 
@@ -161,7 +163,7 @@ Eigen::MatrixXd Settings::diagonal_weight(const std::string& key, const Eigen::V
         const YAML::Node node = has(key) ? node_[key][static_cast<std::size_t>(i)] : YAML::Node();
         throw SettingsError(field_name(key) + "[" + std::to_string(i) + "]",
                             "expected a positive number (the weight must be positive definite), got " +
-                                std::to_string(diagonal(i)),
+                                text(diagonal(i)),
                             node.Mark());
       }
     }

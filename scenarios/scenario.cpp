@@ -61,6 +61,15 @@ Motion read_motion(const Settings& phase, const std::string& type) {
     if (type == "step") return Step{to};
     return Blend{to};
   }
+  if (type == "accelerate") {
+    phase.allow_only({"name", "type", "time", "direction", "speed"});
+    require(phase, "direction");
+    require(phase, "speed");
+    const Eigen::Vector3d xyh = phase.vector("direction", Eigen::Vector3d::Zero(), 3);
+    if (!(xyh.norm() > 0.0)) throw phase.error("direction", "must not be zero");
+    const Eigen::Vector2d speed = phase.vector("speed", Eigen::Vector2d::Zero(), 2, 0.0);
+    return Accelerate{Eigen::Vector3d(xyh.x(), xyh.y(), -xyh.z()).normalized(), speed(0), speed(1)};
+  }
   if (type == "sinusoid") {
     phase.allow_only({"name", "type", "time", "amplitude", "period"});
     require(phase, "amplitude");
@@ -92,7 +101,7 @@ double read_phases(const YAML::Node& root, PhasedTrajectory& trajectory) {
     const Settings indexed(phases[i], "phases[" + std::to_string(i) + "]");
     require(indexed, "type");
     const std::string type =
-        indexed.choice("type", "", {"hold", "ramp", "step", "blend", "sinusoid", "figure8", "circle"});
+        indexed.choice("type", "", {"hold", "ramp", "step", "blend", "accelerate", "sinusoid", "figure8", "circle"});
     const std::string name = indexed.string("name", type);
     const Settings phase(phases[i], "phases." + name);
 

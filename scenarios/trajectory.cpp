@@ -36,6 +36,12 @@ void validate(const std::string& phase, const Motion& motion) {
                  [&](const Ramp& m) { finite_vector("target", m.to); },
                  [&](const Step& m) { finite_vector("target", m.to); },
                  [&](const Blend& m) { finite_vector("target", m.to); },
+                 [&](const Accelerate& m) {
+                   if (!(std::abs(m.direction.norm() - 1.0) < 1e-9))
+                     throw Error("phase '" + phase + "' (" + type + "): direction must be a unit vector");
+                   require_finite(phase, type, "start_speed", m.start_speed);
+                   require_finite(phase, type, "end_speed", m.end_speed);
+                 },
                  [&](const Sinusoid& m) {
                    finite_vector("amplitude", m.amplitude);
                    require_period(phase, type, m.period);
@@ -71,6 +77,11 @@ Eigen::Vector3d Blend::position(const Eigen::Vector3d& start, double tau, double
   return start + s * (to - start);
 }
 
+Eigen::Vector3d Accelerate::position(const Eigen::Vector3d& start, double tau, double duration) const {
+  const double t = std::clamp(tau, 0.0, duration);
+  return start + (start_speed * t + (end_speed - start_speed) * t * t / (2.0 * duration)) * direction;
+}
+
 Eigen::Vector3d Sinusoid::position(const Eigen::Vector3d& start, double tau, double) const {
   return start + std::sin(kTwoPi * tau / period) * amplitude;
 }
@@ -94,6 +105,7 @@ const char* motion_type(const Motion& motion) {
                         [](const Ramp&) { return "ramp"; },
                         [](const Step&) { return "step"; },
                         [](const Blend&) { return "blend"; },
+                        [](const Accelerate&) { return "accelerate"; },
                         [](const Sinusoid&) { return "sinusoid"; },
                         [](const FigureEight&) { return "figure8"; },
                         [](const Circle&) { return "circle"; },

@@ -41,6 +41,16 @@ struct Blend {
   Eigen::Vector3d position(const Eigen::Vector3d& start, double tau, double duration) const;
 };
 
+// Along `direction` with the speed changing linearly from start_speed to end_speed over the phase
+// (constant acceleration): start + direction (v0 tau + (v1 − v0) tau² / (2 duration)). Equal speeds
+// cruise. Chaining phases with matching speeds keeps the commanded velocity continuous.
+struct Accelerate {
+  Eigen::Vector3d direction = Eigen::Vector3d::UnitX();  // NED, unit length
+  double start_speed = 0.0;                              // m/s
+  double end_speed = 0.0;                                // m/s
+  Eigen::Vector3d position(const Eigen::Vector3d& start, double tau, double duration) const;
+};
+
 // start + amplitude · sin(2π tau / period), per axis: back at the start after whole periods.
 struct Sinusoid {
   Eigen::Vector3d amplitude = Eigen::Vector3d::Zero();  // NED (m)
@@ -70,14 +80,14 @@ struct Circle {
   Eigen::Vector3d position(const Eigen::Vector3d& start, double tau, double duration) const;
 };
 
-using Motion = std::variant<Hold, Ramp, Step, Blend, Sinusoid, FigureEight, Circle>;
+using Motion = std::variant<Hold, Ramp, Step, Blend, Accelerate, Sinusoid, FigureEight, Circle>;
 
 // The name of a motion's alternative as the scenario files spell it ("hold", "figure8", ...).
 const char* motion_type(const Motion& motion);
 
 // A piecewise-in-time command: phases back to back from t = 0, each a Motion that starts where the
-// previous phase ended (the first where the trajectory starts). Before 0 it gives the start,
-// after the last phase the last phase's final position.
+// previous phase ended (the first where the trajectory starts). Before 0 it gives the first
+// phase's value at its start, after the last phase the last phase's final position.
 class PhasedTrajectory final : public sim::ReferenceTrajectory {
  public:
   struct Phase {

@@ -14,6 +14,7 @@ namespace thetad::app {
 namespace {
 
 struct Row {
+  std::string name;  // as registered; summary.controller is the law's own, more specific name
   sim::RunSummary summary;
   sim::RunFiles files;
 };
@@ -54,7 +55,7 @@ std::string comparison_json(const Flight& flight, const std::vector<Row>& rows) 
   j["disturbances"] = flight.disturbances();
   j["runs"] = nlohmann::ordered_json::array();
   for (const Row& row : rows) {
-    j["runs"].push_back({{"controller", row.summary.controller},
+    j["runs"].push_back({{"controller", row.name},
                          {"csv", row.files.csv.filename().string()},
                          {"json", row.files.json.filename().string()},
                          {"summary", nlohmann::ordered_json::parse(sim::summary_json(row.summary))}});
@@ -92,7 +93,7 @@ int run_compare(const CompareArguments& arguments) {
   for (std::size_t i = 0; i < names.size(); ++i) {
     const std::string label = "[" + std::to_string(i + 1) + "/" + std::to_string(names.size()) + "] " + names[i] + ":";
     const sim::RunResult result = flight.fly(*controllers[i], label);
-    rows.push_back({result.summary, sim::write_run(result, out, names[i])});
+    rows.push_back({names[i], result.summary, sim::write_run(result, out, names[i])});
   }
 
   std::printf("%s (%g s, seed %llu, %s)\n", flight.scenario().name.c_str(), flight.scenario().duration,

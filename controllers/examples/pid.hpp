@@ -14,7 +14,7 @@
 // flapping, ḃ1 = −p − 10 b1 + 44.5 δ_lat, ṗ = 300 b1 (pitch: 44.5 and 159), so the rotor itself
 // damps the rates (ṗ ≈ −30 p): roll is s³ + 10 s² + 300 s + 13350 k_φ, and k_φ = 0.08 puts its
 // slow pole at −3.9 (pitch, k_θ = 0.05: −2.5) with the flapping pair at −3 ± 16j; no rate gain
-// is needed. The position loop must stay slower than that (poles near −0.6 ± 0.4j); altitude acts
+// is needed. The position loop must stay slower than that (−0.8 ± 0.6j, integral −0.05); altitude acts
 // on thrust directly, (s + 2)³. The integral gains are small: the integral error of V_track starts
 // at 0 and must return to 0 in an ideal run, so every integral action overshoots (here by < 0.1 m
 // from a 1 m offset); it is there for model error and wind.

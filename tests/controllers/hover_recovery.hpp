@@ -29,6 +29,7 @@ struct HoverRecovery {
   std::string reason;
   double max_error = 0.0;       // max ‖position error‖ over the run (m)
   double final_error = 0.0;     // ‖position error‖ at the end (m)
+  double settle_band = 0.0;     // (m)
   double settling_time = 0.0;   // last time ‖position error‖ was above settle_band (s)
   double wall_seconds = 0.0;
 };
@@ -54,6 +55,7 @@ inline HoverRecovery recover_hover(sim::ControlLaw& law, const Eigen::Vector3d& 
   const auto start = std::chrono::steady_clock::now();
   const sim::RunResult run = sim::simulate(law, reference, x0, settings);
   HoverRecovery result;
+  result.settle_band = settle_band;
   result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   result.status = run.summary.status;
   result.reason = run.summary.reason;
@@ -70,8 +72,8 @@ inline HoverRecovery recover_hover(sim::ControlLaw& law, const Eigen::Vector3d& 
 }
 
 inline void print(const std::string& what, const HoverRecovery& r) {
-  std::printf("%s: settling (5 cm) %.2f s, max error %.3f m, final error %.2e m, wall %.2f s\n", what.c_str(),
-              r.settling_time, r.max_error, r.final_error, r.wall_seconds);
+  std::printf("%s: settling (to %.3g m) %.2f s, max error %.3f m, final error %.2e m, wall %.2f s\n", what.c_str(),
+              r.settle_band, r.settling_time, r.max_error, r.final_error, r.wall_seconds);
 }
 
 }  // namespace thetad::testing

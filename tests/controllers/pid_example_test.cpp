@@ -21,14 +21,19 @@ TEST(ExamplePid, HoldsTheTrimExactly) {
   EXPECT_LT(r.max_error, 1e-9);
 }
 
+// CI-sized closed loop (ideal, 1 kHz), measured: from 1 m in x, y or z the error is below 0.1 m
+// after 2.3, 2.5 and 2.8 s and stays there; after 8 s it is 0.07 m in x and y (the integral
+// unwinds slowly, ki = 0.05) and 5 mm in z.
 TEST(ExamplePid, ReturnsToHoverFromOneMetreOffsets) {
   const heli::Helicopter model;
-  for (const Eigen::Vector3d offset : {Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitZ()}) {
+  for (const Eigen::Vector3d& offset : {Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 1, 0), Eigen::Vector3d(0, 0, 1)}) {
     auto pid = make_pid(model);
-    const auto r = testing::recover_hover(*pid, offset, 12.0);
-    testing::print("example-pid offset " + std::to_string(offset.x()) + "," + std::to_string(offset.y()) + "," +
-                       std::to_string(offset.z()), r);
-    EXPECT_EQ(r.status, sim::RunStatus::completed) << r.reason;
+    const auto r = testing::recover_hover(*pid, offset, 8.0, 0.1);
+    testing::print("example-pid from (" + std::to_string(offset.x()) + ", " + std::to_string(offset.y()) + ", " +
+                       std::to_string(offset.z()) + ")", r);
+    ASSERT_EQ(r.status, sim::RunStatus::completed) << r.reason;
+    EXPECT_LT(r.settling_time, 3.0);
+    EXPECT_LT(r.final_error, 0.1);
   }
 }
 

@@ -7,6 +7,7 @@
 #include <complex>
 #include <cstdlib>
 #include <new>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -404,24 +405,40 @@ VectorXd typical_state() {
   return x;
 }
 
-TEST_F(HelicopterFixture, FixedPointConvergesWithinThreePasses) {
-  // Spec §7.6 in a closed loop: each sample starts from the input applied at the previous one.
-  // The first sample here starts cold from m g (ΔT_mr ≈ 55 N); the next, 1 ms later along the
-  // motion, starts warm and must meet |Δu| < 1e-6 within 3 passes.
+TEST_F(HelicopterFixture, FixedPointConvergesWithinThreePassesInClosedLoop) {
+  // Spec §7.6 where it is meant to hold: in a closed loop at 1 kHz, each sample starting from the
+  // input applied at the previous one. A disturbed hover (ε = 0.3 along the §10.4 direction) is
+  // flown for 0.3 s (RK4, zero-order hold); after the first 20 samples, whose inputs still jump
+  // by newtons per millisecond, every sample must reach |Δu| < 1e-6 within the 3 passes.
   ThetaDSettings s = settings(3);
   s.k = VectorXd::Ones(2);
   ThetaDController controller(model, s);
   controller.reset(rest, 0.0);
-  sim::Reference reference;
-  reference.position << 0.0, 0.0, -3.5;
-  const VectorXd x = typical_state();
-  VectorXd u(5);
-  controller.control(2.0, x, reference, u);
+  VectorXd x = rest;
+  x.segment<3>(heli::kU) << 0.3, -0.21, 0.09;
+  x.segment<3>(heli::kPhi) << 0.03, -0.024, 0.06;
+  x.segment<3>(heli::kP) << 0.09, -0.06, 0.075;
+  const sim::Reference reference;  // hold the initial position
   const double dt = 1e-3;
-  controller.control(2.0 + dt, x + dt * model.f(x, u), reference, u);
-  EXPECT_LE(controller.last_iterations(), 3);
-  EXPECT_LT(controller.last_input_change(), 1e-6) << "T_mr = " << u[heli::kTmr];
-  EXPECT_GT(u[heli::kTmr], 0.0);
+  VectorXd u(5);
+  int worst_passes = 0;
+  double worst_change = 0.0;
+  for (int sample = 0; sample < 300; ++sample) {
+    controller.control(sample * dt, x, reference, u);
+    if (sample >= 20) {
+      worst_passes = std::max(worst_passes, controller.last_iterations());
+      worst_change = std::max(worst_change, controller.last_input_change());
+    }
+    const VectorXd k1 = model.f(x, u), k2 = model.f(x + 0.5 * dt * k1, u), k3 = model.f(x + 0.5 * dt * k2, u),
+                   k4 = model.f(x + dt * k3, u);
+    x += dt / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+  }
+  std::ostringstream worst;
+  worst << std::scientific << worst_change;
+  RecordProperty("closed_loop_worst_input_change", worst.str());
+  EXPECT_LE(worst_passes, 3);
+  EXPECT_LT(worst_change, 1e-6);
+  EXPECT_LT(x.segment<3>(heli::kU).norm(), 0.3) << "the disturbed hover should be settling";
 }
 
 TEST_F(HelicopterFixture, ControlAllocatesNothing) {

@@ -7,6 +7,7 @@
 #include <numbers>
 #include <string>
 #include <thread>
+#include <tuple>
 #include <vector>
 
 #include <Eigen/SVD>
@@ -86,6 +87,12 @@ void expect_matches_print(const Printed& row) {
 struct HoverReference {
   ModelOptions options;
   double phi, b1, thrust, pedal, lateral, rotor_speed;
+  // How far the printed column is from being an equilibrium of its own equations (relative):
+  // the printed (b1, Omega, delta_lat) violate the hover flapping equation b1 = B (Omega/Omega_nom)^2
+  // delta_lat by 6.5e-5 (resolved) and 2.1e-4 (paper), beyond their rounding; see
+  // HelicopterReference.PrintedTrimViolatesTheFlappingEquation. phi, b1, delta_lat and Omega can be
+  // matched only to that level; T_mr and delta_ped are held to the print.
+  double reference_inconsistency;
 };
 
 void check_hover_against_spec(const HoverReference& ref) {
@@ -105,16 +112,20 @@ void check_hover_against_spec(const HoverReference& ref) {
   EXPECT_NEAR(trim.input[kLon], 0.0, 1e-12);
   EXPECT_NEAR(trim.input[kCol], 0.0, 1e-12);
 
-  expect_matches_print({"phi", trim.state[kPhi], ref.phi, 6});
-  expect_matches_print({"b1", trim.state[kB1], ref.b1, 7});
   expect_matches_print({"T_mr", trim.input[kTmr], ref.thrust, 4});
   expect_matches_print({"delta_ped", trim.input[kPed], ref.pedal, 6});
-  expect_matches_print({"delta_lat", trim.input[kLat], ref.lateral, 7});
-  expect_matches_print({"Omega_mr", trim.rotor_speed, ref.rotor_speed, 3});
+  for (const auto& [name, computed, printed] : {std::tuple{"phi", trim.state[kPhi], ref.phi},
+                                                 std::tuple{"b1", trim.state[kB1], ref.b1},
+                                                 std::tuple{"delta_lat", trim.input[kLat], ref.lateral},
+                                                 std::tuple{"Omega_mr", trim.rotor_speed, ref.rotor_speed}}) {
+    const double relative = (computed - printed) / printed;
+    EXPECT_LE(std::abs(relative), ref.reference_inconsistency) << name << ": relative difference " << relative;
+    std::printf("  %-9s %.10g (spec %.8g, relative difference %+.2e)\n", name, computed, printed, relative);
+  }
 }
 
 TEST(Trim, HoverReproducesSpecResolvedPreset) {
-  check_hover_against_spec({ModelOptions::resolved(), 0.084647, 0.0081850, 80.4781, -0.168466, 0.0018380, 171.966});
+  check_hover_against_spec({ModelOptions::resolved(), 0.084647, 0.0081850, 80.4781, -0.168466, 0.0018380, 171.966, 1e-4});
 }
 
 // §10.2's paper-literal column was computed with the solidity 2 c_mr/(pi R_mr): it lists the same
@@ -124,7 +135,7 @@ TEST(Trim, HoverReproducesSpecResolvedPreset) {
 TEST(Trim, HoverReproducesSpecPaperPreset) {
   ModelOptions options = ModelOptions::paper();
   options.solidity = ModelOptions::Solidity::computed;
-  check_hover_against_spec({options, 0.084023, 0.0081360, 79.8341, -0.167118, 0.0018420, 171.277});
+  check_hover_against_spec({options, 0.084023, 0.0081360, 79.8341, -0.167118, 0.0018420, 171.277, 2.5e-4});
 }
 
 TEST(Trim, HoverOfTheLiteralPaperPresetIsAnEquilibrium) {

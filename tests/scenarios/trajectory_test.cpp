@@ -131,6 +131,18 @@ TEST(Trajectory, StepJumpsAtItsStartAndBlendIsSmooth) {
   EXPECT_NEAR(velocity(trajectory, 12.0).z(), -2.0 * 15.0 / 8.0 / 4.0, 1e-6);  // s'(1/2) = 15/8
 }
 
+TEST(Trajectory, AccelerateChangesTheSpeedLinearly) {
+  PhasedTrajectory trajectory({0.0, 0.0, -3.5});
+  trajectory.append("accelerate", 20.0, Accelerate{Eigen::Vector3d::UnitX(), 0.0, 20.0});
+  trajectory.append("cruise", 30.0, Accelerate{Eigen::Vector3d::UnitX(), 20.0, 20.0});
+  expect_near(trajectory.position(20.0), {200.0, 0.0, -3.5}, 1e-9);
+  expect_near(trajectory.position(30.0), {400.0, 0.0, -3.5}, 1e-9);
+  EXPECT_NEAR(velocity(trajectory, 10.0).x(), 10.0, 1e-6);
+  // Continuous speed across the boundary when the speeds match.
+  EXPECT_NEAR(velocity(trajectory, 20.0 - 1e-3).x(), velocity(trajectory, 20.0 + 1e-3).x(), 1e-2);
+  EXPECT_THROW(trajectory.append("bad", 40.0, Accelerate{{1.0, 1.0, 0.0}, 0.0, 1.0}), Error);
+}
+
 TEST(Trajectory, SinusoidReturnsToItsStartAfterWholePeriods) {
   PhasedTrajectory trajectory({0.0, 0.0, -3.5});
   trajectory.append("wave", 20.0, Sinusoid{{0.0, 1.0, -0.5}, 10.0});
