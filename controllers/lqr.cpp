@@ -4,7 +4,7 @@
 #include <utility>
 
 #include "controllers/registry.hpp"
-#include "controllers/settings.hpp"
+#include "core/settings.hpp"
 #include "core/error.hpp"
 #include "core/helicopter/paper_weights.hpp"
 #include "core/trim.hpp"

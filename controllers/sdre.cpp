@@ -3,7 +3,7 @@
 #include <Eigen/Cholesky>
 
 #include "controllers/registry.hpp"
-#include "controllers/settings.hpp"
+#include "core/settings.hpp"
 #include "core/error.hpp"
 #include "core/helicopter/paper_weights.hpp"
 

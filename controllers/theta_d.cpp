@@ -8,7 +8,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "controllers/registry.hpp"
-#include "controllers/settings.hpp"
+#include "core/settings.hpp"
 #include "core/error.hpp"
 #include "core/helicopter/paper_weights.hpp"
 #include "core/riccati.hpp"

@@ -9,7 +9,7 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include "controllers/settings.hpp"
+#include "core/settings.hpp"
 #include "core/error.hpp"
 #include "core/helicopter/state.hpp"
 

@@ -11,7 +11,7 @@
 #include <unistd.h>
 
 #include "controllers/registry.hpp"
-#include "controllers/settings.hpp"
+#include "core/settings.hpp"
 #include "core/error.hpp"
 
 namespace thetad::app {

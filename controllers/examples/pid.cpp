@@ -8,7 +8,7 @@
 #include <Eigen/Geometry>
 
 #include "controllers/registry.hpp"
-#include "controllers/settings.hpp"
+#include "core/settings.hpp"
 #include "core/error.hpp"
 #include "core/helicopter/state.hpp"
 

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "controllers/registry.hpp"
-#include "controllers/settings.hpp"
+#include "core/settings.hpp"
 #include "tests/controllers/hover_recovery.hpp"
 
 namespace thetad {

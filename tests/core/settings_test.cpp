@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "controllers/settings.hpp"
+#include "core/settings.hpp"
 
 namespace thetad {
 namespace {

@@ -1,4 +1,4 @@
-#include "controllers/settings.hpp"
+#include "core/settings.hpp"
 
 #include <algorithm>
 #include <cmath>
