@@ -31,7 +31,7 @@ struct SdreSettings {
     cold,  // solve_care (balanced Laub–Schur) at every pass
     warm,  // Newton–Kleinman from the last P (solve_care_newton), solve_care when that fails
   };
-  Mode mode = Mode::cold;
+  Mode mode = Mode::warm;
   // Q n×n symmetric positive semi-definite, R m×m symmetric positive definite (Eq. 37).
   Eigen::MatrixXd Q;
   Eigen::MatrixXd R;

@@ -56,6 +56,14 @@ void check_symmetric(const char* name, const MatrixRef& M) {
          ", ‖" + name + "‖_F = " + num(M.norm()) + ")");
 }
 
+// Smallest and largest eigenvalue of a symmetric matrix. Weights are usually diagonal, and the
+// per-step SDRE calls this every control step: a diagonal needs no eigensolver.
+std::pair<double, double> spectrum_range(const MatrixXd& M) {
+  if (M.isDiagonal(0.0)) return {M.diagonal().minCoeff(), M.diagonal().maxCoeff()};
+  const Eigen::VectorXd eigenvalues = M.selfadjointView<Eigen::Lower>().eigenvalues();
+  return {eigenvalues(0), eigenvalues(eigenvalues.size() - 1)};
+}
+
 // What both solvers derive from (B, Q, R) once the preconditions hold. G = B R⁻¹ B' is kept
 // factored as W'W with W = L⁻¹B' (R = LL'): G·P then costs 2mn² instead of n³, P G P = (WP)'(WP)
 // is exactly symmetric, and K = R⁻¹B'P = L'⁻¹(WP).
@@ -70,19 +78,16 @@ Weights prepare_weights(const MatrixRef& B, const MatrixRef& Q, const MatrixRef&
   check_symmetric("R", R);
   Weights w;
   w.Q = 0.5 * (Q + Q.transpose());
-  const Eigen::VectorXd q_eigenvalues = w.Q.selfadjointView<Eigen::Lower>().eigenvalues();
-  const double q_scale = std::max(std::abs(q_eigenvalues(0)), std::abs(q_eigenvalues(q_eigenvalues.size() - 1)));
-  if (q_eigenvalues(0) < -100.0 * static_cast<double>(Q.rows()) * kEps * q_scale)
-    fail("Q is not positive semi-definite (min eigenvalue " + num(q_eigenvalues(0)) + ", max " +
-         num(q_eigenvalues(q_eigenvalues.size() - 1)) + ")");
+  const auto [q_min, q_max] = spectrum_range(w.Q);
+  const double q_scale = std::max(std::abs(q_min), std::abs(q_max));
+  if (q_min < -100.0 * static_cast<double>(Q.rows()) * kEps * q_scale)
+    fail("Q is not positive semi-definite (min eigenvalue " + num(q_min) + ", max " + num(q_max) + ")");
 
   const MatrixXd R_sym = 0.5 * (R + R.transpose());
-  const Eigen::VectorXd r_eigenvalues = R_sym.selfadjointView<Eigen::Lower>().eigenvalues();
-  const double r_max = r_eigenvalues(r_eigenvalues.size() - 1);
+  const auto [r_min, r_max] = spectrum_range(R_sym);
   // Below m·eps·max the Cholesky factor, hence G, carries no correct digit.
-  if (!(r_eigenvalues(0) > static_cast<double>(R.rows()) * kEps * r_max))
-    fail("R is not symmetric positive definite (min eigenvalue " + num(r_eigenvalues(0)) + ", max " +
-         num(r_max) + ")");
+  if (!(r_min > static_cast<double>(R.rows()) * kEps * r_max))
+    fail("R is not symmetric positive definite (min eigenvalue " + num(r_min) + ", max " + num(r_max) + ")");
   Eigen::LLT<MatrixXd> llt(R_sym);
   w.L = llt.matrixL();
   w.W = B.transpose();
@@ -100,23 +105,39 @@ void care_residual(const MatrixRef& A, const Weights& w, const MatrixXd& P, cons
 
 double relative_to_q(double residual_norm, const Weights& w) { return residual_norm / std::max(1.0, w.Q.norm()); }
 
-// Fills K, the closed-loop spectrum and the residual for a symmetric P, and refuses a P that
-// does not stabilize: the last line of defence against returning garbage.
-CareResult finish(const MatrixRef& A, const MatrixRef& B, const Weights& w, MatrixXd P, int iterations) {
+// What a solver already knows about its P when it finishes: W·P always; the residual and the
+// closed-loop spectrum when it computed them on the way (null: compute them here).
+struct Solution {
+  MatrixXd P;  // symmetric
+  MatrixXd WP;
+  const MatrixXd* residual = nullptr;
+  const Eigen::VectorXcd* closed_loop_eigenvalues = nullptr;
+};
+
+// Fills K, the closed-loop spectrum and the residual, and refuses a P that does not stabilize:
+// the last line of defence against returning garbage.
+CareResult finish(const MatrixRef& A, const MatrixRef& B, const Weights& w, Solution s, int iterations) {
   CareResult result;
-  const MatrixXd WP = w.W * P;
-  result.K = w.L.transpose().triangularView<Eigen::Upper>().solve(WP);
-  MatrixXd Ac = A;
-  Ac.noalias() -= B * result.K;
-  result.closed_loop_eigenvalues = Eigen::EigenSolver<MatrixXd>(Ac, false).eigenvalues();
+  result.K = w.L.transpose().triangularView<Eigen::Upper>().solve(s.WP);
+  if (s.closed_loop_eigenvalues) {
+    result.closed_loop_eigenvalues = *s.closed_loop_eigenvalues;
+  } else {
+    MatrixXd Ac = A;
+    Ac.noalias() -= B * result.K;
+    result.closed_loop_eigenvalues = Eigen::EigenSolver<MatrixXd>(Ac, false).eigenvalues();
+  }
   const double max_real = result.closed_loop_eigenvalues.real().maxCoeff();
   if (!(max_real < 0.0))
     fail("the solution is not stabilizing: A − BK has an eigenvalue with Re λ = " + num(max_real) +
          kStabilizabilityHint);
-  MatrixXd Res(P.rows(), P.cols());
-  care_residual(A, w, P, WP, Res);
-  result.relative_residual = relative_to_q(Res.norm(), w);
-  result.P = std::move(P);
+  if (s.residual) {
+    result.relative_residual = relative_to_q(s.residual->norm(), w);
+  } else {
+    MatrixXd Res(s.P.rows(), s.P.cols());
+    care_residual(A, w, s.P, s.WP, Res);
+    result.relative_residual = relative_to_q(Res.norm(), w);
+  }
+  result.P = std::move(s.P);
   result.iterations = iterations;
   return result;
 }
@@ -233,7 +254,12 @@ CareResult solve_care(const MatrixRef& A, const MatrixRef& B, const MatrixRef& Q
     eta = refined_eta;
     ++refinements;
   }
-  return finish(A, B, w, std::move(P), refinements);
+  // eig(A − GP) are the stable eigenvalues of H for the P of its stable subspace: the Schur form
+  // has them (dgees ordered them first), which saves an eigensolver on the SDRE's hot path. A
+  // refined P is no longer that P exactly, so its spectrum is computed afresh.
+  Eigen::VectorXcd stable(n);
+  for (Index i = 0; i < n; ++i) stable(i) = {wr(i), wi(i)};
+  return finish(A, B, w, {std::move(P), std::move(WP), &Res, refinements == 0 ? &stable : nullptr}, refinements);
 }
 
 CareResult solve_care_newton(const MatrixRef& A, const MatrixRef& B, const MatrixRef& Q, const MatrixRef& R,
@@ -284,7 +310,9 @@ CareResult solve_care_newton(const MatrixRef& A, const MatrixRef& B, const Matri
     // Rounding limits the residual of an ill-conditioned equation long before the step stalls.
     if (step <= tolerance) break;
   }
-  return finish(A, B, w, std::move(P), iterations);
+  // Res belongs to P only when the loop stopped on the residual; after a step it is stale.
+  const bool residual_current = residual <= tolerance;
+  return finish(A, B, w, {std::move(P), std::move(WP), residual_current ? &Res : nullptr, nullptr}, iterations);
 }
 
 }  // namespace thetad
