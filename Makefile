@@ -26,10 +26,12 @@ build: deps
 test: build
 	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
 
-# The quick diagnostics first, then scenario I with every disturbance of the paper (seed 1).
+# The quick diagnostics first, then scenario I with every disturbance of the paper (seed 1), then
+# its figures (the paper's Figs. 2-9 with the controllers overlaid; see docs/reproduction.md).
 demo: build
 	$(BUILD_DIR)/apps/thetad demo --out $(OUT)
-	$(BUILD_DIR)/apps/thetad compare --scenario scenarios/scenario-1.yaml --controllers theta-d,sdre,lqr --seed 1 --out $(OUT)/scenario-1
+	$(BUILD_DIR)/apps/thetad compare --scenario scenarios/scenario-1.yaml --controllers theta-d,sdre,lqr,lqr-scheduled --seed 1 --out $(OUT)/scenario-1
+	$(BUILD_DIR)/apps/thetad plot --in $(OUT)/scenario-1 --out $(OUT)/scenario-1/figures
 
 # Benchmarks are built separately with -march=native (see docs/performance.md).
 bench: deps

@@ -3,7 +3,9 @@
 // The θ–D controller (paper-spec §5, §7): a series approximation Σ_{i<N} T_i(x, t) of the SDRE
 // solution P(x) around the frozen system (A0, g0) = (F, B) at the initial state. T0 solves one
 // CARE at reset; every further term solves a Lyapunov equation with the same constant operator
-// L(T) = T Ac0 + Ac0ᵀ T, so one control step is a few products and N − 1 packed linear maps.
+// L(T) = T Ac0 + Ac0ᵀ T, so one control step is a few products and N − 1 packed linear maps;
+// T1 is one product with precomputed solutions, the last term is solved only where u needs it
+// (docs/performance.md).
 //
 // Generic over any SdcPlant: it never knows which plant it flies.
 
@@ -40,6 +42,24 @@ struct ThetaDSettings {
   double fixed_point_tolerance = 1e-6;
 };
 
+// e_i(t) = 1 − k_i exp(−l_i (t − t0)) of Eq. (25), at elapsed = t − t0.
+double perturbation_factor(double k, double l, double elapsed);
+
+// ΣT_i(x, t) as a polynomial in e_1(t) … e_{N−1}(t) (spec §7.5). T_i = e_i L⁻¹(W_i) and W_i is
+// linear and bilinear in T_0 … T_{i−1}, so the sum is Σ_j (Π_i e_i^powers[j][i]) pieces[j] with
+// pieces that depend on the state alone: computed once per state, ΣT for any k, l and t costs a
+// few additions and no Lyapunov solve (the tuner's cheap exact evaluation). With N = 3 the pieces
+// are T0, T1° (monomial e1), T2a (e2), T2b (e1 e2) and T2c (e1² e2).
+struct SeriesExpansion {
+  std::vector<std::vector<int>> powers;  // powers[j][i]: exponent of e_{i+1} in the monomial of pieces[j]
+  std::vector<Eigen::MatrixXd> pieces;   // symmetric n×n; pieces[0] = T0 (the empty monomial)
+
+  // Π_i e_i^powers[j][i] for e = (e_1 … e_{N−1}), by repeated products (exact for e = 0 or 1).
+  double coefficient(std::size_t j, const Eigen::Ref<const Eigen::VectorXd>& e) const;
+  // Σ_j coefficient(j, e) pieces[j].
+  Eigen::MatrixXd evaluate(const Eigen::Ref<const Eigen::VectorXd>& e) const;
+};
+
 class ThetaDController final : public Controller {
  public:
   // Keeps a reference to the model: it must outlive the controller and its clones.
@@ -60,8 +80,17 @@ class ThetaDController final : public Controller {
   // by the same code as one pass of control(). terms() then holds the individual T_i.
   Eigen::MatrixXd value_matrix(const Eigen::VectorXd& x, const Eigen::VectorXd& input, double t);
 
+  // The pieces of Σ_{i<N} T_i(x, ·) with F(x; input), B(x; input) (spec §7.5): value_matrix(x,
+  // input, t) equals series_expansion(x, input).evaluate(e(t)) with e_i = perturbation_factor(k_i,
+  // l_i, t − start_time()), for any k, l. A cold path for the tuner: it allocates and solves one
+  // Lyapunov equation per piece. Not thread-safe per object (the solver's buffers): one copy per thread.
+  SeriesExpansion series_expansion(const Eigen::VectorXd& x, const Eigen::VectorXd& input);
+
   // Diagnostics (valid after reset()).
-  const std::vector<Eigen::MatrixXd>& terms() const { return T_; }  // T_0 … T_{N−1} of the last evaluation
+  double start_time() const { return t0_; }  // t0 of the last reset()
+  // T_0 … T_{N−1} of the last value_matrix() (control() forms its last term only in the rows
+  // that Bᵀ reads, and leaves T_{N−1} as it was).
+  const std::vector<Eigen::MatrixXd>& terms() const { return T_; }
   const Eigen::MatrixXd& T0() const { return T_[0]; }
   const Eigen::MatrixXd& A0() const { return A0_; }
   const Eigen::MatrixXd& g0() const { return g0_; }
@@ -74,9 +103,19 @@ class ThetaDController final : public Controller {
 
  private:
   void require_reset(const char* caller) const;
-  // One pass of spec §5.10 steps 1–2 at (x; input), time t: fills F_, B_ and T_[1 … N−1].
-  void evaluate_series(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& input,
-                       double t);
+  // How much of the last term T_{N−1} a pass forms: all of it, into T_[N−1] (value_matrix); only
+  // its unknowns in the rows that Bᵀ reads, left in packed_term_ (control: Eq. 35 needs nothing
+  // else); or only (T_{N−1} v) on those rows, left in last_products_ (control, when the fixed
+  // point makes several passes with one v: see projections_).
+  enum class LastTerm { full, input_rows, input_row_products };
+  // One pass of spec §5.10 steps 1–2 at (x; input), time t: fills F_, B_, T_[1 … N−2] and the
+  // last term as `wanted` asks if B(x) has no nonzero outside the input rows (else in full).
+  // Returns the form it took.
+  LastTerm evaluate_series(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& input,
+                           double t, LastTerm wanted);
+  // The part of reset() that needs T0 and Ac0: the packed Lyapunov inverse in the order below and
+  // the solutions T1 for each varying coefficient.
+  void prepare_series(const Eigen::VectorXd& x0);
 
   const SdcPlant* model_;
   ThetaDSettings settings_;
@@ -89,8 +128,29 @@ class ThetaDController final : public Controller {
   Eigen::MatrixXd R_inverse_sqrt_t_;  // L⁻ᵀ with R = L Lᵀ: g R⁻¹ gᵀ = (g L⁻ᵀ)(g L⁻ᵀ)ᵀ
   Eigen::MatrixXd g0_scaled_;         // g0 L⁻ᵀ: G0 = g0_scaled g0_scaledᵀ
   std::optional<ConstantLyapunovSolver> lyapunov_;
+  // The n(n+1)/2 unknowns T(i, j), i ≤ j, of a symmetric term, ordered so that the first
+  // input_row_unknowns_ are those in a row where B can be nonzero (input_row_, probed at reset).
+  std::vector<Eigen::Index> unknown_row_, unknown_col_;
+  Eigen::Index input_row_unknowns_ = 0;
+  std::vector<char> input_row_;
+  Eigen::MatrixXd lyapunov_inverse_;  // L⁻¹ on the unknowns in that order: T = L⁻¹ W
+  // (T v)(r) = Σ_j v_j T(r, j) is, for each input row r, one fixed linear form of pack(W). With
+  // several fixed-point passes on one v, control() forms these forms once, projections_.col(k) =
+  // row_solutions_.middleCols(k n, n) · v (column k n + j: the row of L⁻¹ giving T(r_k, j)), and
+  // each pass reads the last term on the input rows as projections_ᵀ pack(W): ~rows·n(n+1)
+  // flops instead of a solve on input_row_unknowns_ rows. Only set up when that is cheaper.
+  std::vector<Eigen::Index> input_rows_;
+  bool project_last_term_ = false;
+  Eigen::MatrixXd row_solutions_, projections_;
+  Eigen::VectorXd last_products_;
+  // T1 is linear in the coefficients of Ã and g̃ (Eq. 22b). For the K coefficients seen to vary
+  // at reset (slot ≥ 0 in column-major order; ~33 for the helicopter), T1 = e1 · basis_ · c,
+  // basis_ holding T1 for each unit coefficient. Kept only while K < n(n+1)/2, where one product
+  // with basis_ is cheaper than forming W1 and solving; otherwise every slot is −1.
+  std::vector<Eigen::Index> a_slot_, g_slot_;
+  Eigen::MatrixXd basis_;
 
-  // Per-step buffers, sized in the constructor.
+  // Per-step buffers, sized in the constructor or at reset.
   Eigen::MatrixXd F_, B_;
   Eigen::MatrixXd g_tilde_scaled_;  // g̃ L⁻ᵀ: S2 = g̃s g̃sᵀ, S1 = g0s g̃sᵀ + g̃s g0sᵀ
   // The nonzero coefficients of Ã = F − A0 (~33 of 324 for the helicopter): the first
@@ -98,10 +158,13 @@ class ThetaDController final : public Controller {
   std::vector<Eigen::Index> a_tilde_rows_, a_tilde_cols_;
   std::vector<double> a_tilde_values_;
   std::size_t a_tilde_count_ = 0;
+  Eigen::VectorXd coefficients_;    // c of basis_
   std::vector<Eigen::MatrixXd> T_;  // T_i (θ = 1, spec §5.7), already scaled by e_i
   std::vector<Eigen::MatrixXd> Y_;  // T_i g0 L⁻ᵀ
   std::vector<Eigen::MatrixXd> Z_;  // T_i g̃ L⁻ᵀ
-  Eigen::MatrixXd M_, W_;           // W_i = M + Mᵀ (spec §5.4)
+  Eigen::MatrixXd M_;               // W_i = M + Mᵀ (spec §5.4)
+  Eigen::MatrixXd left_, right_;    // the low-rank sums of M as one product left · rightᵀ
+  Eigen::VectorXd packed_right_, packed_term_;
   Eigen::VectorXd v_, value_gradient_, Bt_gradient_, guess_, update_, applied_;
   int last_iterations_ = 0;
   double last_input_change_ = 0.0;

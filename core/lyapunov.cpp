@@ -19,10 +19,6 @@ std::string shape(const Eigen::Ref<const Eigen::MatrixXd>& M) {
   return std::to_string(M.rows()) + "x" + std::to_string(M.cols());
 }
 
-// Position of x_ij (i ≤ j) in the packed vector: upper triangle, column by column, as LAPACK's
-// packed storage, so that packing and unpacking walk Q and X in memory order.
-Eigen::Index packed_index(Eigen::Index i, Eigen::Index j) { return j * (j + 1) / 2 + i; }
-
 }  // namespace
 
 Eigen::MatrixXd solve_lyapunov(const Eigen::Ref<const Eigen::MatrixXd>& A,

@@ -55,6 +55,14 @@ class ConstantLyapunovSolver {
   // Largest real part of the eigenvalues of Ac (negative: Ac is Hurwitz).
   double max_real_eigenvalue() const { return max_real_eigenvalue_; }
 
+  // The packed operator itself, for callers that solve only some unknowns or precompute the
+  // solutions of fixed right sides (θ–D, docs/performance.md): x = packed_inverse() * q, with q
+  // and x the upper triangles in packed_index order, solves Ac'X + XAc + Q = 0.
+  const Eigen::MatrixXd& packed_inverse() const { return inverse_; }
+  // Position of x_ij (i ≤ j) in the packed vector: upper triangle, column by column, as LAPACK's
+  // packed storage, so that packing and unpacking walk Q and X in memory order.
+  static Eigen::Index packed_index(Eigen::Index i, Eigen::Index j) { return j * (j + 1) / 2 + i; }
+
  private:
   Eigen::Index n_;
   // Minus the inverse of the packed operator, so that x_packed = inverse_ * q_packed.

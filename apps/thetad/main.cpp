@@ -6,7 +6,10 @@
 
 #include "apps/thetad/compare_command.hpp"
 #include "apps/thetad/demo_command.hpp"
+#include "apps/thetad/plot_command.hpp"
+#include "apps/thetad/design_lqr_command.hpp"
 #include "apps/thetad/run_command.hpp"
+#include "apps/thetad/tune_command.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"thetad: theta-D, SDRE and LQR control of the X-Cell miniature helicopter"};
@@ -24,6 +27,12 @@ int main(int argc, char** argv) {
   auto* run = thetad::app::add_run_command(app, run_arguments);
   thetad::app::CompareArguments compare_arguments;
   auto* compare = thetad::app::add_compare_command(app, compare_arguments);
+  thetad::app::DesignLqrArguments design_lqr_arguments;
+  auto* design_lqr = thetad::app::add_design_lqr_command(app, design_lqr_arguments);
+  thetad::app::PlotArguments plot_arguments;
+  auto* plot = thetad::app::add_plot_command(app, plot_arguments);
+  thetad::app::TuneArguments tune_arguments;
+  auto* tune = thetad::app::add_tune_command(app, tune_arguments);
   auto* list = app.add_subcommand("list", "List the registered controllers with their descriptions");
 
   CLI11_PARSE(app, argc, argv);
@@ -32,6 +41,9 @@ int main(int argc, char** argv) {
     if (*run) return thetad::app::run_run(run_arguments);
     if (*compare) return thetad::app::run_compare(compare_arguments);
     if (*list) return thetad::app::run_list();
+    if (*tune) return thetad::app::run_tune(tune_arguments);
+    if (*plot) return thetad::app::run_plot(plot_arguments);
+    if (*design_lqr) return thetad::app::run_design_lqr(design_lqr_arguments);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "thetad: error: %s\n", e.what());
     return 1;

@@ -31,7 +31,7 @@ TEST(ControllerRegistry, AnUnknownNameListsTheKnownOnes) {
     FAIL() << "no error";
   } catch (const Error& error) {
     EXPECT_THAT(error.what(), HasSubstr("unknown controller 'sdre2'"));
-    EXPECT_THAT(error.what(), HasSubstr("example-pid, lqr, sdre"));
+    EXPECT_THAT(error.what(), HasSubstr("example-pid, lqr, lqr-scheduled, sdre"));
   }
 }
 

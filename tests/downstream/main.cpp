@@ -1,7 +1,11 @@
-// A user's program: solves a double-integrator LQR problem through the installed thetad.
+// A user's program against the installed thetad: a Riccati solve through thetad::core, and a
+// controller built by name, which only works if the self-registering controllers survived the
+// link of the installed thetad::controllers.
 #include <Eigen/Dense>
+#include <cmath>
 #include <cstdio>
 
+#include "controllers/registry.hpp"
 #include "core/riccati.hpp"
 
 int main() {
@@ -11,5 +15,14 @@ int main() {
   // Known solution: P = [[sqrt(3), 1], [1, sqrt(3)]].
   const double error = std::abs(result.P(0, 0) - std::sqrt(3.0)) + std::abs(result.P(0, 1) - 1.0);
   std::printf("downstream: P(0,0) = %.12f, residual %.2e\n", result.P(0, 0), result.relative_residual);
-  return error < 1e-10 ? 0 : 1;
+
+  const thetad::heli::Helicopter model;
+  Eigen::VectorXd x0 = Eigen::VectorXd::Zero(thetad::heli::kStateDim);
+  x0(thetad::heli::kS) = 1.0;
+  auto controller = thetad::ControllerRegistry::instance().make("theta-d", YAML::Node(), {model, x0, 0.0});
+  controller->reset(x0, 0.0);
+  Eigen::VectorXd u(thetad::heli::kInputDim);
+  controller->control(0.0, x0, thetad::sim::Reference{}, u);
+  std::printf("downstream: %s at rest commands T_mr = %.3f N\n", controller->name().c_str(), u(0));
+  return error < 1e-10 && std::abs(u(0) - 80.77) < 0.1 ? 0 : 1;
 }

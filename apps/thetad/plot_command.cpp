@@ -1,0 +1,269 @@
+#include "apps/thetad/plot_command.hpp"
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "core/atomic_file.hpp"
+#include "core/error.hpp"
+#include "core/sim/simulator.hpp"
+
+extern char** environ;
+
+namespace thetad::app {
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::ordered_json;
+
+// `directory` absolute and normalized, without a trailing separator ("out/" names "out").
+fs::path directory_path(const fs::path& directory) {
+  const fs::path path = fs::absolute(directory).lexically_normal();
+  return path.has_filename() ? path : path.parent_path();
+}
+
+struct RunInput {
+  std::string name;
+  fs::path csv;
+  ordered_json summary;
+};
+
+std::string read_text(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw Error("cannot read " + file.string() + ": " + std::strerror(errno));
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+ordered_json read_json(const fs::path& file) {
+  try {
+    return ordered_json::parse(read_text(file));
+  } catch (const ordered_json::parse_error& error) {
+    throw Error(file.string() + ": not valid JSON: " + error.what());
+  }
+}
+
+std::vector<std::string> split(const std::string& line, char separator) {
+  std::vector<std::string> fields;
+  std::istringstream in(line);
+  for (std::string field; std::getline(in, field, separator);) fields.push_back(field);
+  return fields;
+}
+
+// The CSV's header must be sim::csv_header(), column by column; the error names the first
+// difference, so a log from another thetad version is recognized as such.
+void check_header(const fs::path& csv) {
+  std::ifstream in(csv, std::ios::binary);
+  if (!in) throw Error("cannot read " + csv.string() + ": " + std::strerror(errno));
+  std::string line;
+  if (!std::getline(in, line) || line.empty()) throw Error(csv.string() + ": empty file, expected a thetad run log");
+  if (line.back() == '\r') line.pop_back();
+  if (line == sim::csv_header()) return;
+  const std::vector<std::string> found = split(line, ',');
+  const auto& schema = sim::log_schema();
+  const std::string where = csv.string() + ": header does not match thetad's run-log schema: ";
+  for (std::size_t i = 0; i < std::max(found.size(), schema.size()); ++i) {
+    const std::string column = std::to_string(i + 1);
+    if (i >= found.size()) throw Error(where + "column " + column + " '" + schema[i].header() + "' is missing");
+    if (i >= schema.size()) throw Error(where + "unexpected column " + column + " '" + found[i] + "'");
+    if (found[i] != schema[i].header()) {
+      throw Error(where + "column " + column + " is '" + found[i] + "', expected '" + schema[i].header() + "'");
+    }
+  }
+}
+
+RunInput read_run(const fs::path& directory, const std::string& name, const std::string& csv, const std::string& json) {
+  RunInput run{name, fs::absolute(directory / csv), {}};
+  for (const fs::path& file : {directory / csv, directory / json}) {
+    if (!fs::is_regular_file(file)) throw Error("run '" + name + "': " + file.string() + " is missing");
+  }
+  check_header(run.csv);
+  run.summary = read_json(directory / json);
+  if (!run.summary.is_object()) throw Error((directory / json).string() + ": expected a JSON object (a run summary)");
+  return run;
+}
+
+struct Inputs {
+  std::string title;
+  std::vector<RunInput> runs;
+};
+
+// A `thetad compare` directory is read through its comparison.json (its order, its scenario);
+// otherwise every <name>.json with a <name>.csv beside it is a run, in name order.
+Inputs read_inputs(const fs::path& in) {
+  if (!fs::is_directory(in)) throw Error("--in " + in.string() + ": no such directory");
+  Inputs inputs;
+  const fs::path comparison = in / "comparison.json";
+  if (fs::exists(comparison)) {
+    const ordered_json j = read_json(comparison);
+    try {
+      inputs.title = j.at("scenario").at("name").get<std::string>() + " (" + j.at("disturbances").get<std::string>() +
+                     ", seed " + std::to_string(j.at("seed").get<std::uint64_t>()) + ")";
+      for (const auto& run : j.at("runs")) {
+        inputs.runs.push_back(read_run(in, run.at("controller").get<std::string>(), run.at("csv").get<std::string>(),
+                                       run.at("json").get<std::string>()));
+      }
+    } catch (const ordered_json::exception& error) {
+      throw Error(comparison.string() + ": not a thetad comparison: " + error.what());
+    }
+  } else {
+    inputs.title = directory_path(in).filename().string();
+    std::vector<std::string> stems;
+    for (const auto& entry : fs::directory_iterator(in)) {
+      const fs::path& file = entry.path();
+      if (file.extension() == ".json" && fs::exists(fs::path(file).replace_extension(".csv"))) {
+        stems.push_back(file.stem().string());
+      }
+    }
+    std::sort(stems.begin(), stems.end());
+    for (const auto& stem : stems) inputs.runs.push_back(read_run(in, stem, stem + ".csv", stem + ".json"));
+  }
+  if (inputs.runs.empty()) {
+    throw Error("--in " + in.string() + ": no runs (expected the comparison.json of thetad compare or the " +
+                "<controller>.csv/.json pairs of thetad run)");
+  }
+  return inputs;
+}
+
+std::string manifest(const Inputs& inputs, const PlotArguments& arguments, const fs::path& staging) {
+  ordered_json j;
+  j["title"] = inputs.title;
+  j["out"] = fs::absolute(staging).string();
+  j["formats"] = arguments.formats;
+  j["dpi"] = arguments.dpi;
+  j["schema"] = ordered_json::array();
+  for (const auto& column : sim::log_schema()) j["schema"].push_back({{"name", column.name}, {"unit", column.unit}});
+  j["runs"] = ordered_json::array();
+  for (const auto& run : inputs.runs) {
+    j["runs"].push_back({{"name", run.name}, {"csv", run.csv.string()}, {"summary", run.summary}});
+  }
+  return j.dump(1) + "\n";
+}
+
+// Removes the staging directory however run_plot leaves.
+struct Staging {
+  fs::path path;
+  ~Staging() {
+    std::error_code ignored;
+    fs::remove_all(path, ignored);
+  }
+};
+
+// Runs `python script manifest` with MPLBACKEND=Agg, stdout and stderr to `log`; the exit status.
+int run_script(const std::string& python, const fs::path& script, const fs::path& manifest_file, const fs::path& log) {
+  std::vector<std::string> environment{"MPLBACKEND=Agg"};
+  for (char** entry = environ; *entry != nullptr; ++entry) {
+    if (std::strncmp(*entry, "MPLBACKEND=", 11) != 0) environment.emplace_back(*entry);
+  }
+  std::vector<char*> envp;
+  for (auto& entry : environment) envp.push_back(entry.data());
+  envp.push_back(nullptr);
+  std::vector<std::string> argument_text{python, script.string(), manifest_file.string()};
+  std::vector<char*> argv;
+  for (auto& argument : argument_text) argv.push_back(argument.data());
+  argv.push_back(nullptr);
+
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+  pid_t pid = 0;
+  const int spawn_error = posix_spawnp(&pid, python.c_str(), &actions, nullptr, argv.data(), envp.data());
+  posix_spawn_file_actions_destroy(&actions);
+  if (spawn_error != 0) {
+    throw Error("cannot run the plot interpreter '" + python + "': " + std::strerror(spawn_error) +
+                " (Debian's python3-matplotlib is needed: make deps; or set THETAD_PYTHON)");
+  }
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0) {
+    if (errno != EINTR) throw Error(std::string("waiting for the plot script: ") + std::strerror(errno));
+  }
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+std::string trimmed(std::string text) {
+  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.pop_back();
+  return text;
+}
+
+}  // namespace
+
+CLI::App* add_plot_command(CLI::App& app, PlotArguments& arguments) {
+  auto* plot = app.add_subcommand(
+      "plot", "Draw the paper's figures (Figs. 2-17) and comparison figures for the runs in a directory");
+  plot->add_option("--in", arguments.in, "Directory written by thetad compare (or thetad run)")->required();
+  plot->add_option("--out", arguments.out, "Directory for the figures (created; existing files are replaced)")
+      ->required();
+  plot->add_option("--formats", arguments.formats, "Comma-separated file formats")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"png", "svg", "pdf"}))
+      ->capture_default_str();
+  plot->add_option("--dpi", arguments.dpi, "Resolution of raster formats")->check(CLI::Range(30, 600))->capture_default_str();
+  arguments.script = THETAD_PLOT_SCRIPT;
+  plot->add_option("--script", arguments.script, "The plotting script")->capture_default_str();
+  return plot;
+}
+
+int run_plot(const PlotArguments& arguments) {
+  const Inputs inputs = read_inputs(arguments.in);
+  const fs::path& script = arguments.script;
+  if (!fs::is_regular_file(script)) throw Error("plot script " + script.string() + " not found (see --script)");
+  const char* python_variable = std::getenv("THETAD_PYTHON");
+  // Debian's interpreter: the one that sees python3-matplotlib, whatever python3 is first on PATH.
+  const std::string python = python_variable != nullptr ? python_variable : "/usr/bin/python3";
+
+  // The staging directory is out's sibling, on the same file system so that the figures can be
+  // renamed into place.
+  const fs::path out = directory_path(arguments.out);
+  std::error_code error;
+  fs::create_directories(out.parent_path(), error);
+  if (error) throw Error("cannot create directory " + out.parent_path().string() + ": " + error.message());
+  const Staging staging{out.parent_path() / ("." + out.filename().string() + ".plot-partial-" + std::to_string(::getpid()))};
+  fs::remove_all(staging.path, error);
+  if (!fs::create_directory(staging.path, error)) {
+    throw Error("cannot create directory " + staging.path.string() + ": " + error.message());
+  }
+  // The script's own files start with a dot and stay behind in the staging directory.
+  const fs::path manifest_file = staging.path / ".manifest.json";
+  const fs::path log = staging.path / ".log";
+  write_file_atomically(manifest_file, manifest(inputs, arguments, staging.path));
+
+  std::fprintf(stderr, "plot: drawing %zu run(s) from %s\n", inputs.runs.size(), arguments.in.c_str());
+  const int status = run_script(python, script, manifest_file, log);
+  const std::string messages = trimmed(read_text(log));
+  if (status != 0) {
+    throw Error(script.filename().string() + " failed (exit status " + std::to_string(status) + ")" +
+                (messages.empty() ? std::string() : ": " + messages));
+  }
+  if (!messages.empty()) std::fprintf(stderr, "%s\n", messages.c_str());
+
+  std::vector<fs::path> figures;
+  for (const auto& entry : fs::directory_iterator(staging.path)) {
+    if (entry.path().filename().string().front() != '.') figures.push_back(entry.path());
+  }
+  if (figures.empty()) throw Error(script.filename().string() + " drew no figures");
+  std::sort(figures.begin(), figures.end());
+  fs::create_directories(out, error);
+  if (error) throw Error("cannot create directory " + out.string() + ": " + error.message());
+  for (const auto& figure : figures) fs::rename(figure, out / figure.filename());
+
+  std::printf("Wrote %zu files to %s:\n", figures.size(), arguments.out.c_str());
+  for (const auto& figure : figures) std::printf("  %s\n", (arguments.out / figure.filename()).c_str());
+  return 0;
+}
+
+}  // namespace thetad::app

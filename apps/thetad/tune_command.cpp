@@ -1,0 +1,257 @@
+#include "apps/thetad/tune_command.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <optional>
+#include <unistd.h>
+
+#include <nlohmann/json.hpp>
+
+#include "controllers/sdre.hpp"
+#include "controllers/theta_d.hpp"
+#include "core/atomic_file.hpp"
+#include "core/error.hpp"
+#include "tuning/record.hpp"
+#include "tuning/sigma_fit.hpp"
+
+namespace thetad::app {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+// Redrawing one line in place only makes sense on a terminal a person watches (not in CI logs).
+bool live_progress() { return isatty(fileno(stderr)) == 1 && std::getenv("CI") == nullptr; }
+
+std::string numbers(const Eigen::VectorXd& v) {
+  std::string text;
+  char number[32];
+  for (Eigen::Index i = 0; i < v.size(); ++i) {
+    std::snprintf(number, sizeof number, "%.17g", v[i]);
+    text += (i ? ", " : "") + std::string(number);
+  }
+  return "[" + text + "]";
+}
+
+// The paper's two scenarios validate each other: tuning on one holds the other out.
+std::filesystem::path default_holdout(const std::filesystem::path& scenario) {
+  const std::string name = scenario.filename().string();
+  const char* other = name == "scenario-1.yaml" ? "scenario-2.yaml" : name == "scenario-2.yaml" ? "scenario-1.yaml" : nullptr;
+  if (other == nullptr) return {};
+  const std::filesystem::path sibling = scenario.parent_path() / other;
+  return std::filesystem::exists(sibling) ? sibling : std::filesystem::path();
+}
+
+// The θ–D the command flies and tunes: the registry's defaults (the paper's weights, u0 = hover
+// thrust) with this many terms and these k, l (empty: the paper's 1).
+ThetaDController make_theta_d(const Flight& flight, const heli::Helicopter& model, int terms, const Eigen::VectorXd& k,
+                              const Eigen::VectorXd& l) {
+  const auto registered = flight.make_controller("theta-d");
+  ThetaDSettings settings = dynamic_cast<const ThetaDController&>(*registered).settings();
+  settings.terms = terms;
+  settings.k = k;
+  settings.l = l;
+  return ThetaDController(model, settings);
+}
+
+struct Validation {
+  std::string scenario, role, parameters;
+  sim::RunSummary summary;
+};
+
+nlohmann::ordered_json to_json(const Validation& v) {
+  const sim::RunSummary& s = v.summary;
+  const auto xyz = [](const Eigen::Vector3d& e) { return nlohmann::ordered_json::array({e.x(), e.y(), e.z()}); };
+  return {{"scenario", v.scenario},
+          {"role", v.role},
+          {"parameters", v.parameters},
+          {"status", status_text(s)},
+          {"rms_tracking_error_m", xyz(s.rms_tracking_error)},
+          {"max_tracking_error_m", xyz(s.max_tracking_error)},
+          {"cost", s.cost}};
+}
+
+}  // namespace
+
+CLI::App* add_tune_command(CLI::App& app, TuneArguments& a) {
+  auto* tune = app.add_subcommand(
+      "tune", "Fit theta-D's k_i, l_i so that sigma_max(sum T_i) matches sigma_max(P_SDRE) along an SDRE flight "
+              "(paper-spec 7.5); validate on the tuning and a held-out scenario");
+  tune->add_option("--scenario", a.flight.scenario, "Scenario to record the SDRE flight on (YAML)")->required();
+  tune->add_option("--seed", a.flight.seed, "Seed of the runs' random numbers (default: the scenario's, else 1)")
+      ->each([&a](const std::string&) { a.flight.seed_given = true; });
+  tune->add_flag("--ideal", a.flight.ideal, "No parameter uncertainty, noise or wind");
+  tune->add_option("--out", a.flight.out, "Output directory")->required();
+  // The expansion's pieces grow fast with N (5, 11, 29 for N = 3, 4, 5; 516 for N = 8), and every
+  // sample stores all of them: N = 5 already needs ~340 MB for scenario I's 8500 samples.
+  tune->add_option("--terms", a.terms, "N: the theta-D series T0 + ... + T_{N-1} (tunes N-1 pairs k_i, l_i)")
+      ->check(CLI::Range(2, 5))
+      ->capture_default_str();
+  tune->add_option("--algorithm", a.algorithm,
+                   "NLopt algorithm: LN_BOBYQA, LN_SBPLX, LN_NELDERMEAD (local from k = l = 1) or GN_DIRECT_L, "
+                   "GN_ISRES (global, then LN_BOBYQA)")
+      ->capture_default_str();
+  tune->add_option("--record", a.record,
+                   "SDRE record (CSV): reused if the file exists, else the flight is recorded into it "
+                   "(default: <out>/sdre-record.csv, always re-flown)");
+  tune->add_option("--every", a.every, "Keep every N-th controller sample in the record")
+      ->check(CLI::Range(1, 1000000))
+      ->capture_default_str();
+  tune->add_flag("--relative", a.relative, "Fit relative errors (sigma_theta-D - sigma_SDRE) / sigma_SDRE");
+  tune->add_option("--k-bounds", a.k_bounds, "Lower and upper bound of every k_i")->expected(2)->capture_default_str();
+  tune->add_option("--l-bounds", a.l_bounds, "Lower and upper bound of every l_i")->expected(2)->capture_default_str();
+  tune->add_option("--holdout", a.holdout,
+                   "Held-out scenario for validation (default: the other paper scenario, when tuning on one)");
+  tune->add_flag("--no-validation", a.no_validation, "Skip the validation flights");
+  tune->add_option("--threads", a.threads, "Threads of the fit")->check(CLI::Range(1, 64))->capture_default_str();
+  return tune;
+}
+
+int run_tune(const TuneArguments& a) {
+  // Everything that can be wrong with the inputs fails here, before a flight or a file.
+  tuning::FitOptions options;
+  options.algorithm = a.algorithm;
+  options.weighting = a.relative ? tuning::Weighting::relative : tuning::Weighting::absolute;
+  options.k_lower = a.k_bounds[0];
+  options.k_upper = a.k_bounds[1];
+  options.l_lower = a.l_bounds[0];
+  options.l_upper = a.l_bounds[1];
+  options.seed = a.flight.seed;
+  tuning::check_fit_options(options, a.terms - 1);
+  const Flight flight(a.flight);
+  const Scenario& scenario = flight.scenario();
+  const heli::Helicopter model(heli::Parameters::nominal(), scenario.model_options);
+
+  std::optional<Flight> holdout;
+  const std::filesystem::path holdout_file = a.holdout.empty() ? default_holdout(a.flight.scenario) : a.holdout;
+  if (!a.no_validation && !holdout_file.empty()) {
+    FlightOptions options_holdout = a.flight;
+    options_holdout.scenario = holdout_file;
+    holdout.emplace(options_holdout);
+  }
+
+  const bool reuse = !a.record.empty() && std::filesystem::exists(a.record);
+  std::optional<tuning::TuningRecord> record;
+  if (reuse) {
+    record = tuning::read_record(a.record, model.state_dim(), model.input_dim());
+    if (record->scenario != scenario.name)
+      throw Error(a.record.string() + ": recorded on scenario '" + record->scenario + "', not '" + scenario.name +
+                  "' (delete it or name another --record file to re-fly)");
+  }
+
+  const auto& out = a.flight.out;
+  if (!reuse) {
+    const auto sdre = flight.make_controller("sdre");
+    const auto samples = static_cast<Eigen::Index>(std::llround(flight.settings().duration / flight.settings().controller_period()));
+    tuning::SdreRecorder recorder(dynamic_cast<const SdreController&>(*sdre), a.every, samples);
+    const sim::RunResult run = flight.fly(recorder, "sdre (record):");
+    if (run.summary.status != sim::RunStatus::completed)
+      throw Error("the SDRE flight of " + scenario.name + " diverged (" + run.summary.reason +
+                  "); there is no full trajectory to tune on");
+    const auto start = Clock::now();
+    record = recorder.finish(scenario.name, a.threads);
+    const std::filesystem::path file = a.record.empty() ? out / "sdre-record.csv" : a.record;
+    tuning::write_record(file, *record);
+    std::fprintf(stderr, "recorded %lld samples, sigma_max(P) by cold CARE solves in %.1f s: %s\n",
+                 static_cast<long long>(record->size()), seconds_since(start), file.c_str());
+  }
+
+  // The θ–D starts where the recorded flight started: A0, g0, T0 at the scenario's x0, t0 = 0.
+  ThetaDController theta_d = make_theta_d(flight, model, a.terms, {}, {});
+  theta_d.reset(scenario.initial_state, 0.0);
+  const auto expansion_start = Clock::now();
+  const tuning::SigmaMatch match(theta_d, *record, a.threads);
+  const double expansion_seconds = seconds_since(expansion_start);
+
+  const bool live = live_progress();
+  auto last_draw = Clock::now();
+  options.progress = [&](int evaluations, double best) {
+    if (!live || Clock::now() - last_draw < std::chrono::milliseconds(100)) return;
+    last_draw = Clock::now();
+    std::fprintf(stderr, "\r\033[Kfit (%s): %d evaluations, best residual %.6e", a.algorithm.c_str(), evaluations, best);
+  };
+  const tuning::FitResult fit = tuning::fit(match, options);
+  if (live) std::fprintf(stderr, "\r\033[K");
+
+  // The settings file: a map from controller name to its block, as thetad run --settings reads it.
+  const std::filesystem::path settings_file = out / "theta-d-tuned.yaml";
+  write_file_atomically(settings_file, "# thetad tune on " + scenario.name + " (" + a.algorithm + ", " +
+                                           (a.relative ? "relative" : "absolute") + " residual)\ntheta-d:\n  terms: " +
+                                           std::to_string(a.terms) + "\n  k: " + numbers(fit.k) + "\n  l: " +
+                                           numbers(fit.l) + "\n");
+  const Eigen::VectorXd ones = Eigen::VectorXd::Ones(match.parameters());
+  const Eigen::VectorXd sigma_default = match.sigma(ones, ones), sigma_tuned = match.sigma(fit.k, fit.l);
+  std::string curves = "t_s,sigma_sdre,sigma_theta_d_default,sigma_theta_d_tuned\n";
+  char line[128];
+  for (Eigen::Index k = 0; k < match.samples(); ++k) {
+    std::snprintf(line, sizeof line, "%.6f,%.10g,%.10g,%.10g\n", record->time[static_cast<std::size_t>(k)],
+                  match.sigma_sdre()[k], sigma_default[k], sigma_tuned[k]);
+    curves += line;
+  }
+  write_file_atomically(out / "sigma-curves.csv", curves);
+
+  std::vector<Validation> validations;
+  if (!a.no_validation) {
+    const auto validate = [&](const Flight& f, const std::string& role) {
+      const heli::Helicopter f_model(heli::Parameters::nominal(), f.scenario().model_options);
+      for (const bool tuned : {false, true}) {
+        ThetaDController controller = tuned ? make_theta_d(f, f_model, a.terms, fit.k, fit.l)
+                                            : make_theta_d(f, f_model, a.terms, ones, ones);
+        const std::string parameters = tuned ? "tuned" : "default";
+        const sim::RunResult run = f.fly(controller, "theta-d " + parameters + " on " + f.scenario().name + ":");
+        validations.push_back({f.scenario().name, role, parameters, run.summary});
+      }
+    };
+    validate(flight, "tuning");
+    if (holdout) validate(*holdout, "held-out");
+  }
+
+  const double rms_default = std::sqrt(fit.start_residual / static_cast<double>(match.samples()));
+  const double rms_tuned = std::sqrt(fit.residual / static_cast<double>(match.samples()));
+  nlohmann::ordered_json j;
+  j["scenario"] = scenario.name;
+  j["record"] = {{"samples", match.samples()}, {"reused", reuse}};
+  j["terms"] = a.terms;
+  j["algorithm"] = a.algorithm;
+  j["weighting"] = a.relative ? "relative" : "absolute";
+  j["bounds"] = {{"k", a.k_bounds}, {"l", a.l_bounds}};
+  j["k"] = std::vector<double>(fit.k.data(), fit.k.data() + fit.k.size());
+  j["l"] = std::vector<double>(fit.l.data(), fit.l.data() + fit.l.size());
+  j["residual_default"] = fit.start_residual;
+  j["residual_tuned"] = fit.residual;
+  j["rms_sigma_error_default"] = rms_default;
+  j["rms_sigma_error_tuned"] = rms_tuned;
+  j["evaluations"] = fit.evaluations;
+  j["stop_reason"] = fit.stop_reason;
+  j["expansion_seconds"] = expansion_seconds;
+  j["fit_seconds"] = fit.seconds;
+  j["threads"] = a.threads;
+  j["validation"] = nlohmann::ordered_json::array();
+  for (const Validation& v : validations) j["validation"].push_back(to_json(v));
+  write_file_atomically(out / "tuning.json", j.dump(2) + "\n");
+
+  // Quiet and parseable: one key=value line per figure.
+  std::printf("scenario=%s samples=%lld terms=%d algorithm=%s weighting=%s\n", scenario.name.c_str(),
+              static_cast<long long>(match.samples()), a.terms, a.algorithm.c_str(), a.relative ? "relative" : "absolute");
+  std::printf("k=%s\nl=%s\n", numbers(fit.k).c_str(), numbers(fit.l).c_str());
+  std::printf("residual_default=%.10g residual_tuned=%.10g rms_sigma_error_default=%.6g rms_sigma_error_tuned=%.6g\n",
+              fit.start_residual, fit.residual, rms_default, rms_tuned);
+  std::printf("evaluations=%d expansion_seconds=%.3f fit_seconds=%.3f stop=\"%s\"\n", fit.evaluations, expansion_seconds,
+              fit.seconds, fit.stop_reason.c_str());
+  for (const Validation& v : validations) {
+    const sim::RunSummary& s = v.summary;
+    std::printf("validation scenario=%s role=%s theta_d=%s status=\"%s\" rms_m=%.5f,%.5f,%.5f max_m=%.5f,%.5f,%.5f "
+                "cost=%.8g\n",
+                v.scenario.c_str(), v.role.c_str(), v.parameters.c_str(), status_text(s).c_str(),
+                s.rms_tracking_error.x(), s.rms_tracking_error.y(), s.rms_tracking_error.z(), s.max_tracking_error.x(),
+                s.max_tracking_error.y(), s.max_tracking_error.z(), s.cost);
+  }
+  std::printf("wrote=%s,%s,%s\n", settings_file.c_str(), (out / "sigma-curves.csv").c_str(), (out / "tuning.json").c_str());
+  return 0;
+}
+
+}  // namespace thetad::app

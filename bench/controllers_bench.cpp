@@ -1,0 +1,224 @@
+// One control step of every registered controller on the same states: those the simulator handed
+// the θ–D controller in a closed-loop run of scenario I (all disturbances, its seed), cycled in
+// their order, so that a warm-started SDRE sees realistic step-to-step changes and no controller
+// is timed on one cached state. θ–D runs with N = 1 … 4 terms and 1 (one-step lag) or 3 (exact Ω,
+// spec §7.6) fixed-point passes; SDRE cold (balanced Laub) and warm (Newton–Kleinman from the
+// last P) with the same passes; the LQRs and the example PID; and, as a reference for the Riccati
+// solver, the SDRE step with SLICOT's SB02MD in place of solve_care.
+//
+// The fixed-point tolerance is 0 in every row, so that "3 passes" always means 3: the cost of the
+// variant, not of how fast one trajectory happens to converge.
+
+#include <benchmark/benchmark.h>
+
+#include <cstddef>
+#include <map>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+#include <yaml-cpp/yaml.h>
+
+#include "bench/slicot.hpp"
+#include "controllers/registry.hpp"
+#include "controllers/sdre.hpp"
+#include "controllers/theta_d.hpp"
+#include "core/helicopter/helicopter.hpp"
+#include "core/helicopter/paper_weights.hpp"
+#include "core/sim/simulator.hpp"
+#include "scenarios/scenario.hpp"
+
+namespace {
+
+namespace heli = thetad::heli;
+
+// The recorded window: 2 s (2000 samples at 1 kHz) inside the figure 8 of scenario I.
+constexpr double kRecordFrom = 13.0;
+constexpr double kRecordTo = 15.0;
+
+struct Sample {
+  double t;
+  Eigen::VectorXd state;  // measured (noisy) 18-state
+  thetad::sim::Reference reference;
+  Eigen::VectorXd input;  // what the recorded controller commanded
+};
+
+// Passes every call on to the controller it wraps and keeps the ones inside the window.
+class RecordingLaw final : public thetad::sim::ControlLaw {
+ public:
+  RecordingLaw(thetad::Controller& inner, std::vector<Sample>& samples) : inner_(inner), samples_(samples) {}
+  std::string name() const override { return inner_.name(); }
+  void reset(const Eigen::VectorXd& x0, double t0) override { inner_.reset(x0, t0); }
+  void control(double t, const Eigen::Ref<const Eigen::VectorXd>& measured, const thetad::sim::Reference& reference,
+               Eigen::Ref<Eigen::VectorXd> u) override {
+    inner_.control(t, measured, reference, u);
+    if (t >= kRecordFrom) samples_.push_back({t, measured, reference, u});
+  }
+
+ private:
+  thetad::Controller& inner_;
+  std::vector<Sample>& samples_;
+};
+
+struct Recording {
+  thetad::Scenario scenario;
+  heli::Helicopter model;  // the controllers' nominal model (spec A-27)
+  std::vector<Sample> samples;
+
+  Recording()
+      : scenario(thetad::load_scenario(THETAD_SOURCE_DIR "/scenarios/scenario-1.yaml")),
+        model(heli::Parameters::nominal(), scenario.model_options) {
+    thetad::sim::SimulationSettings settings = scenario.simulation_settings();
+    settings.duration = kRecordTo;
+    settings.measure_compute_time = false;
+    const auto flown = make("theta-d", YAML::Node());
+    RecordingLaw law(*flown, samples);
+    const auto run = thetad::sim::simulate(law, scenario.trajectory, scenario.initial_state, settings,
+                                           heli::Parameters::nominal(), scenario.model_options);
+    if (run.summary.status != thetad::sim::RunStatus::completed)
+      throw std::runtime_error("controllers_bench: the recording run diverged: " + run.summary.reason);
+  }
+
+  std::unique_ptr<thetad::Controller> make(const std::string& name, const YAML::Node& settings) const {
+    return thetad::ControllerRegistry::instance().make(name, settings,
+                                                       thetad::ControllerContext{model, scenario.initial_state, 0.0});
+  }
+};
+
+// Recorded on first use, so that listing the benchmarks costs nothing.
+const Recording& recording() {
+  static const Recording instance;
+  return instance;
+}
+
+// Mean fixed-point passes per step, for the controllers that iterate.
+int passes_of(const thetad::Controller& controller) {
+  if (const auto* theta_d = dynamic_cast<const thetad::ThetaDController*>(&controller))
+    return theta_d->last_iterations();
+  if (const auto* sdre = dynamic_cast<const thetad::SdreController*>(&controller)) return sdre->last_iterations();
+  return 0;
+}
+
+// Times controller.control() on the recorded samples in order, from the second on.
+void time_steps(benchmark::State& state, thetad::Controller& controller) {
+  const Recording& r = recording();
+  controller.reset(r.scenario.initial_state, 0.0);
+  Eigen::VectorXd u(heli::kInputDim);
+  // One untimed step: the SDRE's first sample is always cold.
+  controller.control(r.samples[0].t, r.samples[0].state, r.samples[0].reference, u);
+  std::size_t k = 1;
+  double passes = 0.0;
+  for (auto _ : state) {
+    const Sample& s = r.samples[k];
+    controller.control(s.t, s.state, s.reference, u);
+    benchmark::DoNotOptimize(u.data());
+    benchmark::ClobberMemory();
+    passes += passes_of(controller);
+    if (++k == r.samples.size()) k = 0;
+  }
+  state.counters["passes"] = benchmark::Counter(passes, benchmark::Counter::kAvgIterations);
+  state.counters["states"] = static_cast<double>(r.samples.size());
+}
+
+// A controller from the registry with its defaults, built once: Google Benchmark calls a function
+// several times, and lqr-scheduled designs its table of trims (seconds) when it is built.
+void registered_step(benchmark::State& state, const std::string& name) {
+  static std::map<std::string, std::unique_ptr<thetad::Controller>> built;
+  auto& controller = built[name];
+  if (!controller) controller = recording().make(name, YAML::Node());
+  time_steps(state, *controller);
+}
+
+// θ–D and SDRE built directly (the registry's SDRE block has no fixed-point tolerance), with
+// what they share: the paper's weights, u0 = hover thrust (spec §7.1, §7.6), every pass run.
+template <class Settings>
+Settings series_settings(const heli::Helicopter& model, int passes) {
+  Settings s;
+  s.Q = heli::paper_state_weights().asDiagonal();
+  s.R = heli::paper_input_weights().asDiagonal();
+  s.initial_input =
+      Eigen::VectorXd::Unit(heli::kInputDim, heli::kTmr) * (model.parameters().mass * model.parameters().gravity);
+  s.fixed_point_iterations = passes;
+  s.fixed_point_tolerance = 0.0;
+  return s;
+}
+
+void theta_d_step(benchmark::State& state, int terms, int passes) {
+  const Recording& r = recording();
+  auto s = series_settings<thetad::ThetaDSettings>(r.model, passes);
+  s.terms = terms;
+  thetad::ThetaDController controller(r.model, s);
+  time_steps(state, controller);
+}
+
+void sdre_step(benchmark::State& state, thetad::SdreSettings::Mode mode, int passes) {
+  const Recording& r = recording();
+  auto s = series_settings<thetad::SdreSettings>(r.model, passes);
+  s.mode = mode;
+  thetad::SdreController controller(r.model, s);
+  time_steps(state, controller);
+}
+
+// The SDRE's one-pass step (F, B at the recorded input, CARE, u = −R⁻¹BᵀPv) with SB02MD as the
+// CARE solver: Laub's method, general scaling, G = B R⁻¹ Bᵀ formed per step as SB02MD needs it.
+void sdre_step_sb02md(benchmark::State& state) {
+  const Recording& r = recording();
+  const int n = heli::kStateDim, n2 = 2 * n, ldwork = 6 * n + 64 * n2;
+  const Eigen::MatrixXd Q = heli::paper_state_weights().asDiagonal();
+  const Eigen::MatrixXd R = heli::paper_input_weights().asDiagonal();
+  const Eigen::LLT<Eigen::MatrixXd> R_factor(R);
+  Eigen::MatrixXd F(n, n), B(n, heli::kInputDim), a(n, n), g(n, n), x(n, n), s(n2, n2), U(n2, n2);
+  Eigen::VectorXd wr(n2), wi(n2), dwork(ldwork), v(n), u(heli::kInputDim);
+  std::vector<int> iwork(n2), bwork(n2);
+  double rcond = 0.0;
+  int info = 0;
+  std::size_t k = 0;
+  for (auto _ : state) {
+    const Sample& sample = r.samples[k];
+    r.model.sdc(sample.state, sample.input, F, B);
+    r.model.tracking_vector(sample.state, sample.reference, v);
+    g.noalias() = B * R_factor.solve(B.transpose());
+    a = F;
+    x = Q;
+    sb02md_("C", "D", "U", "G", "S", &n, a.data(), &n, g.data(), &n, x.data(), &n, &rcond, wr.data(),
+            wi.data(), s.data(), &n2, U.data(), &n2, iwork.data(), dwork.data(), &ldwork, bwork.data(),
+            &info, 1, 1, 1, 1, 1);
+    if (info != 0) break;
+    u.noalias() = -R_factor.solve(B.transpose() * (x * v));
+    benchmark::DoNotOptimize(u.data());
+    if (++k == r.samples.size()) k = 0;
+  }
+  if (info != 0) state.SkipWithError(("SB02MD info " + std::to_string(info)).c_str());
+}
+
+void register_benchmarks() {
+  using Mode = thetad::SdreSettings::Mode;
+  for (const int passes : {1, 3}) {
+    const std::string suffix = "/passes:" + std::to_string(passes);
+    for (const int terms : {1, 2, 3, 4})
+      benchmark::RegisterBenchmark(("theta-d/terms:" + std::to_string(terms) + suffix).c_str(), theta_d_step, terms,
+                                   passes)
+          ->Unit(benchmark::kMicrosecond);
+    benchmark::RegisterBenchmark(("sdre-cold" + suffix).c_str(), sdre_step, Mode::cold, passes)
+        ->Unit(benchmark::kMicrosecond);
+    benchmark::RegisterBenchmark(("sdre-warm" + suffix).c_str(), sdre_step, Mode::warm, passes)
+        ->Unit(benchmark::kMicrosecond);
+  }
+  benchmark::RegisterBenchmark("sdre-sb02md/passes:1", sdre_step_sb02md)->Unit(benchmark::kMicrosecond);
+  for (const char* name : {"lqr", "lqr-scheduled", "example-pid"})
+    benchmark::RegisterBenchmark(name, registered_step, std::string(name))->Unit(benchmark::kMicrosecond);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  register_benchmarks();
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -1,0 +1,168 @@
+// thetad plot on the output of a short `thetad compare`, run as a user runs them (THETAD_BINARY).
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+std::string read(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+void write(const fs::path& file, const std::string& text) { std::ofstream(file, std::ios::binary) << text; }
+
+void replace_once(const fs::path& file, const std::string& from, const std::string& to) {
+  std::string text = read(file);
+  const auto at = text.find(from);
+  ASSERT_NE(at, std::string::npos) << from << " not in " << file;
+  write(file, text.replace(at, from.size(), to));
+}
+
+struct Output {
+  int status = -1;
+  std::string out;
+  std::string err;
+};
+
+// `environment` (VAR=value ...) and thetad with `arguments`, output captured in `directory`.
+Output thetad(const fs::path& directory, const std::string& arguments, const std::string& environment = "") {
+  const std::string command = "CI=1 " + environment + " " + std::string(THETAD_BINARY) + " " + arguments + " >" +
+                              (directory / "stdout.txt").string() + " 2>" + (directory / "stderr.txt").string();
+  const int raw = std::system(command.c_str());
+  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, read(directory / "stdout.txt"), read(directory / "stderr.txt")};
+}
+
+// Every figure the plot command draws: the paper's kinds (Figs. 2-9 / 10-17) and the comparisons.
+const std::vector<std::string> kFigures = {
+    "trajectory_3d",   "position",        "euler_angles",        "angular_rates",
+    "body_velocities", "flapping_angles", "control_deflections", "main_rotor_thrust",
+    "tracking_error",  "compute_time",    "summary"};
+
+class Plot : public ::testing::Test {
+ protected:
+  // One short comparison for every test (the flights are the slow part): a 2 s climb to 0.5 m with
+  // two cheap controllers.
+  static void SetUpTestSuite() {
+    root_ = fs::temp_directory_path() / ("thetad_plot_test_" + std::to_string(::getpid()));
+    fs::remove_all(root_);
+    fs::create_directories(root_);
+    write(root_ / "climb.yaml",
+          "name: climb\nduration: 2\nphases:\n  - name: climb\n    type: ramp\n    time: [0, 2]\n    to: [0, 0, 0.5]\n");
+    compare_ = thetad(root_, "compare --scenario " + (root_ / "climb.yaml").string() +
+                                 " --controllers lqr,example-pid --seed 1 --out " + (root_ / "runs").string());
+  }
+  static void TearDownTestSuite() { fs::remove_all(root_); }
+
+  void SetUp() override {
+    ASSERT_EQ(compare_.status, 0) << compare_.err;
+    dir_ = root_ / ::testing::UnitTest::GetInstance()->current_test_info()->name();
+    fs::create_directories(dir_);
+    fs::copy(root_ / "runs", dir_ / "runs");
+  }
+
+  Output plot(const std::string& extra = "", const std::string& environment = "") const {
+    return thetad(dir_, "plot --in " + (dir_ / "runs").string() + " --out " + (dir_ / "figures").string() + " " + extra,
+                  environment);
+  }
+
+  // The plot fails with `message` on stderr and writes nothing.
+  void expect_rejected(const std::string& message) const {
+    const Output output = plot();
+    EXPECT_EQ(output.status, 1);
+    EXPECT_THAT(output.err, HasSubstr(message));
+    expect_nothing_written();
+  }
+
+  // A failed plot leaves neither the output directory nor its staging sibling behind.
+  void expect_nothing_written() const {
+    EXPECT_FALSE(fs::exists(dir_ / "figures"));
+    for (const auto& entry : fs::directory_iterator(dir_)) {
+      EXPECT_EQ(entry.path().filename().string().find(".figures"), std::string::npos) << entry.path();
+    }
+  }
+
+  static inline fs::path root_;
+  static inline Output compare_;
+  fs::path dir_;
+};
+
+TEST_F(Plot, DrawsEveryFigureAsValidPngAndSvg) {
+  const Output output = plot();
+  ASSERT_EQ(output.status, 0) << output.err;
+  for (const auto& figure : kFigures) {
+    const std::string png = read(dir_ / "figures" / (figure + ".png"));
+    const std::string svg = read(dir_ / "figures" / (figure + ".svg"));
+    EXPECT_EQ(png.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8)) << figure;
+    EXPECT_GT(png.size(), 1000u) << figure;
+    EXPECT_EQ(svg.substr(0, 5), "<?xml") << figure;
+    EXPECT_THAT(svg.substr(0, 1000), HasSubstr("<svg")) << figure;
+    EXPECT_THAT(output.out, HasSubstr(figure + ".png"));
+  }
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir_ / "figures"), fs::directory_iterator()), 2 * kFigures.size());
+  // The staging directory is gone.
+  for (const auto& entry : fs::directory_iterator(dir_)) {
+    EXPECT_EQ(entry.path().filename().string().find(".figures"), std::string::npos) << entry.path();
+  }
+}
+
+TEST_F(Plot, MissingInputDirectoryIsAClearError) {
+  const Output output = thetad(dir_, "plot --in " + (dir_ / "nowhere").string() + " --out " + (dir_ / "figures").string());
+  EXPECT_EQ(output.status, 1);
+  EXPECT_THAT(output.err, HasSubstr("thetad: error: --in " + (dir_ / "nowhere").string() + ": no such directory"));
+  expect_nothing_written();
+}
+
+TEST_F(Plot, DirectoryWithoutRunsIsAClearError) {
+  fs::create_directories(dir_ / "empty");
+  const Output output = thetad(dir_, "plot --in " + (dir_ / "empty").string() + " --out " + (dir_ / "figures").string());
+  EXPECT_EQ(output.status, 1);
+  EXPECT_THAT(output.err, HasSubstr("no runs"));
+  expect_nothing_written();
+}
+
+TEST_F(Plot, ColumnWithAnotherUnitIsRejected) {
+  replace_once(dir_ / "runs" / "lqr.csv", "phi_rad,", "phi_deg,");
+  expect_rejected("lqr.csv: header does not match thetad's run-log schema: column 11 is 'phi_deg', expected 'phi_rad'");
+}
+
+TEST_F(Plot, MissingColumnIsRejected) {
+  replace_once(dir_ / "runs" / "example-pid.csv", ",compute_ns\n", "\n");
+  expect_rejected("'compute_ns' is missing");
+}
+
+TEST_F(Plot, MalformedSummaryJsonIsRejected) {
+  write(dir_ / "runs" / "lqr.json", "{\"controller\": \"lqr\",");
+  expect_rejected("lqr.json: not valid JSON");
+}
+
+TEST_F(Plot, ComparisonWithoutRunsListIsRejected) {
+  write(dir_ / "runs" / "comparison.json", "{\"scenario\": {\"name\": \"climb\"}}");
+  expect_rejected("comparison.json: not a thetad comparison");
+}
+
+TEST_F(Plot, FailingScriptLeavesAnExistingOutputDirectoryAsItWas) {
+  fs::create_directories(dir_ / "figures");
+  write(dir_ / "figures" / "position.png", "old");
+  const Output output = plot("", "THETAD_PYTHON=/bin/false");
+  EXPECT_EQ(output.status, 1);
+  EXPECT_THAT(output.err, HasSubstr("plot_run.py failed (exit status 1)"));
+  EXPECT_EQ(read(dir_ / "figures" / "position.png"), "old");
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir_ / "figures"), fs::directory_iterator()), 1);
+}
+
+}  // namespace

@@ -1,0 +1,184 @@
+// The k_i, l_i fit (spec §7.5): recovery of known parameters, determinism over threads, a real
+// SDRE record, and clear errors for bad input.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <unistd.h>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "controllers/registry.hpp"
+#include "controllers/sdre.hpp"
+#include "core/error.hpp"
+#include "scenarios/scenario.hpp"
+#include "tests/tuning/helicopter_theta_d.hpp"
+#include "tuning/record.hpp"
+#include "tuning/sigma_fit.hpp"
+
+namespace thetad::tuning {
+namespace {
+
+using Eigen::VectorXd;
+using ::testing::HasSubstr;
+namespace fs = std::filesystem;
+
+// A record whose targets are the θ–D's own σ_max at known k, l (by value_matrix, the flown code,
+// not by the expansion the fit uses): the fit must find them again.
+TuningRecord theta_d_targets(const testing::HelicopterThetaD& heli, const VectorXd& k, const VectorXd& l) {
+  ThetaDController truth = heli.make(3, k, l);
+  TuningRecord record;
+  record.scenario = "synthetic";
+  const int K = 200;
+  record.states.resize(heli.model.state_dim(), K);
+  record.inputs.resize(heli.model.input_dim(), K);
+  record.sigma_sdre.resize(K);
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(heli.model.state_dim());
+  for (int i = 0; i < K; ++i) {
+    const double t = 0.02 * i;
+    record.time.push_back(t);
+    record.states.col(i) = heli.excursion(t);
+    record.inputs.col(i) = heli.hover_input;
+    record.sigma_sdre[i] = sigma_max_symmetric(solver, truth.value_matrix(record.states.col(i), heli.hover_input, t));
+  }
+  return record;
+}
+
+TEST(SigmaFit, RecoversKnownParameters) {
+  const testing::HelicopterThetaD heli;
+  const VectorXd k_true = Eigen::Vector2d(0.6, 1.2), l_true = Eigen::Vector2d(1.8, 0.5);
+  const SigmaMatch match(heli.make(3), theta_d_targets(heli, k_true, l_true), 2);
+  FitOptions options;
+  options.weighting = Weighting::relative;  // the targets are exact: scale does not matter
+  const FitResult fit = tuning::fit(match, options);
+  EXPECT_LT(fit.residual, 1e-20);
+  EXPECT_LT(fit.residual, fit.start_residual);
+  for (int i = 0; i < 2; ++i) {
+    EXPECT_NEAR(fit.k[i], k_true[i], 1e-4 * k_true[i]) << "k" << i + 1;
+    EXPECT_NEAR(fit.l[i], l_true[i], 1e-4 * l_true[i]) << "l" << i + 1;
+  }
+  RecordProperty("evaluations", fit.evaluations);
+}
+
+TEST(SigmaFit, ResidualIsBitIdenticalForAnyThreadCount) {
+  const testing::HelicopterThetaD heli;
+  const TuningRecord record = theta_d_targets(heli, Eigen::Vector2d(0.6, 1.2), Eigen::Vector2d(1.8, 0.5));
+  const VectorXd k = Eigen::Vector2d(0.9, 0.3), l = Eigen::Vector2d(4.0, 0.2);
+  const double one = SigmaMatch(heli.make(3), record, 1).residual(k, l, Weighting::absolute);
+  for (int threads : {2, 3, 5}) EXPECT_EQ(SigmaMatch(heli.make(3), record, threads).residual(k, l, Weighting::absolute), one);
+}
+
+// A few seconds of scenario I flown by the SDRE: the fit must not make the match worse.
+TEST(SigmaFit, TunedResidualOnARealRecordIsNoWorse) {
+  const testing::HelicopterThetaD heli;
+  const Scenario scenario = load_scenario(THETAD_SOURCE_DIR "/scenarios/scenario-1.yaml");
+  sim::SimulationSettings settings = scenario.simulation_settings();
+  settings.duration = 3.0;
+  const auto sdre = ControllerRegistry::instance().make("sdre", YAML::Node(), ControllerContext{heli.model, heli.x0, 0.0});
+  const TuningRecord record = record_sdre_flight(dynamic_cast<const SdreController&>(*sdre), scenario.name,
+                                                 scenario.trajectory, scenario.initial_state, settings,
+                                                 scenario.model_options, 10, 2);
+  ASSERT_EQ(record.size(), 300);
+  const SigmaMatch match(heli.make(3), record, 2);
+  const FitResult fit = tuning::fit(match, FitOptions{});
+  EXPECT_LE(fit.residual, fit.start_residual);
+  const VectorXd ones = VectorXd::Ones(2);
+  EXPECT_EQ(fit.start_residual, match.residual(ones, ones, Weighting::absolute));
+  EXPECT_EQ(fit.residual, match.residual(fit.k, fit.l, Weighting::absolute));
+  RecordProperty("residual_default", std::to_string(fit.start_residual));
+  RecordProperty("residual_tuned", std::to_string(fit.residual));
+}
+
+// ---- files and bad input ------------------------------------------------------------------------
+
+class RecordFile : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("thetad_tuning_test_" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  fs::path write(const std::string& name, const std::string& text) const {
+    std::ofstream(dir_ / name) << text;
+    return dir_ / name;
+  }
+  // The error message of reading `text` as a 2-state, 1-input record.
+  std::string read_error(const std::string& text) const {
+    try {
+      read_record(write("bad.csv", text), 2, 1);
+    } catch (const Error& error) {
+      return error.what();
+    }
+    return "no error";
+  }
+
+  const std::string head_ = "# thetad tuning record v1: SDRE flight, sigma_max of P_SDRE at each kept sample\n"
+                            "# scenario: tiny\nt_s,x_0,x_1,u_0,sigma_max_P\n";
+  fs::path dir_;
+};
+
+TEST_F(RecordFile, RoundTripIsExact) {
+  TuningRecord record;
+  record.scenario = "tiny";
+  record.time = {0.0, 0.01};
+  record.states = (Eigen::MatrixXd(2, 2) << 0.1, 1.0 / 3.0, -2e-17, 4.5).finished();
+  record.inputs = (Eigen::MatrixXd(1, 2) << 78.9, -0.0).finished();
+  record.sigma_sdre = Eigen::Vector2d(3.25e6, 1.0 / 7.0);
+  write_record(dir_ / "r.csv", record);
+  const TuningRecord back = read_record(dir_ / "r.csv", 2, 1);
+  EXPECT_EQ(back.scenario, "tiny");
+  EXPECT_EQ(back.time, record.time);
+  EXPECT_EQ(back.states, record.states);
+  EXPECT_EQ(back.inputs, record.inputs);
+  EXPECT_EQ(back.sigma_sdre, record.sigma_sdre);
+}
+
+TEST_F(RecordFile, BadFilesGiveClearErrors) {
+  EXPECT_THROW(read_record(dir_ / "missing.csv", 2, 1), Error);
+  try {
+    read_record(dir_ / "missing.csv", 2, 1);
+  } catch (const Error& error) {
+    EXPECT_THAT(error.what(), HasSubstr("cannot read tuning record"));
+    EXPECT_THAT(error.what(), HasSubstr("missing.csv"));
+  }
+  EXPECT_THAT(read_error("t,x\n"), HasSubstr(":1: not a thetad tuning record"));
+  EXPECT_THAT(read_error(head_.substr(0, head_.rfind("t_s")) + "t_s,x_0,u_0,sigma_max_P\n0,1,2,3\n"),
+              HasSubstr(":3: wrong columns for a plant with 2 states and 1 inputs"));
+  EXPECT_THAT(read_error(head_ + "0,1,2,3,4\n0.01,1,nan,3,4\n"), HasSubstr("bad.csv:5: column 3: not finite"));
+  EXPECT_THAT(read_error(head_ + "0,1,2,3\n"), HasSubstr(":4: only 4 of 5 columns"));
+  EXPECT_THAT(read_error(head_ + "0,1,2,3,4,5\n"), HasSubstr(":4: more than 5 columns"));
+  EXPECT_THAT(read_error(head_ + "0,1,x,3,4\n"), HasSubstr(":4: column 3: not a number"));
+  EXPECT_THAT(read_error(head_ + "0,1,2,3,4\n0,1,2,3,4\n"), HasSubstr(":5: time does not increase"));
+  EXPECT_THAT(read_error(head_), HasSubstr("no samples"));
+}
+
+TEST(FitOptionsCheck, BadOptionsGiveClearErrors) {
+  const auto error_of = [](const FitOptions& options, int parameters = 2) -> std::string {
+    try {
+      check_fit_options(options, parameters);
+    } catch (const Error& error) {
+      return error.what();
+    }
+    return "no error";
+  };
+  FitOptions o;
+  EXPECT_EQ(error_of(o), "no error");
+  o.algorithm = "LN_MAGIC";
+  EXPECT_THAT(error_of(o), HasSubstr("unknown algorithm 'LN_MAGIC' (known: LN_BOBYQA, "));
+  o = FitOptions{};
+  o.k_lower = 1.5;
+  o.k_upper = 0.0;
+  EXPECT_THAT(error_of(o), HasSubstr("the bounds of k are reversed"));
+  o = FitOptions{};
+  o.l_upper = std::nan("");
+  EXPECT_THAT(error_of(o), HasSubstr("the bounds of l must be finite"));
+  o = FitOptions{};
+  o.l_lower = 2.0;  // the start l = 1 lies outside
+  EXPECT_THAT(error_of(o), HasSubstr("the start l lies outside its bounds"));
+  EXPECT_THAT(error_of(FitOptions{}, 0), HasSubstr("nothing to tune"));
+}
+
+}  // namespace
+}  // namespace thetad::tuning

@@ -1,0 +1,125 @@
+// thetad tune as a user runs it: bad input fails with one line and writes nothing; a small tuning
+// writes a settings file that thetad run accepts, and a reused record gives the same fit.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+using ::testing::Not;
+using ::testing::StartsWith;
+
+std::string read(const fs::path& file) {
+  std::ifstream in(file);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// The program sits next to the tests in the build tree: <build>/apps/thetad and <build>/tests/<test>.
+fs::path thetad_binary() { return fs::read_symlink("/proc/self/exe").parent_path().parent_path() / "apps" / "thetad"; }
+
+struct Output {
+  int status = -1;
+  std::string out, err;
+};
+
+class TuneCommand : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("thetad_tune_test_" + std::to_string(::getpid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    // Two seconds of a slow climb: the smallest flight with a trajectory to tune on.
+    std::ofstream(dir_ / "climb.yaml") << "name: climb\nduration: 2\nphases:\n  - name: up\n    type: ramp\n"
+                                          "    time: [0, 2]\n    to: [0, 0, 1]\n";
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  Output thetad(const std::string& arguments) const {
+    const std::string command = "CI=1 " + thetad_binary().string() + " " + arguments + " >" + path("stdout.txt") +
+                                " 2>" + path("stderr.txt");
+    const int raw = std::system(command.c_str());
+    return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, read(dir_ / "stdout.txt"), read(dir_ / "stderr.txt")};
+  }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  std::string tune(const std::string& extra) const {
+    return "tune --scenario " + path("climb.yaml") + " --ideal --out " + path("out") + " " + extra;
+  }
+
+  fs::path dir_;
+};
+
+TEST_F(TuneCommand, BadInputFailsWithOneLineAndWritesNothing) {
+  const std::string head = "# thetad tuning record v1: SDRE flight, sigma_max of P_SDRE at each kept sample\n"
+                           "# scenario: climb\n";
+  std::string columns = "t_s";
+  for (int i = 0; i < 18; ++i) columns += ",x_" + std::to_string(i);
+  for (int i = 0; i < 5; ++i) columns += ",u_" + std::to_string(i);
+  columns += ",sigma_max_P\n";
+  std::string row = "0";
+  for (int i = 0; i < 24; ++i) row += i == 3 ? ",nan" : ",1";
+  std::ofstream(dir_ / "nan.csv") << head << columns << row << "\n";
+  std::ofstream(dir_ / "columns.csv") << head << "t_s,x_0,sigma_max_P\n0,1,2\n";
+  std::string valid = "0";
+  for (int i = 0; i < 24; ++i) valid += ",1";
+  std::ofstream(dir_ / "other.csv") << head.substr(0, head.find("# scenario")) << "# scenario: scenario-2\n" << columns
+                                    << valid << "\n";
+  const struct {
+    std::string arguments, message;
+  } cases[] = {
+      {tune("--algorithm LN_MAGIC"), "unknown algorithm 'LN_MAGIC'"},
+      {tune("--k-bounds 1.5 0"), "the bounds of k are reversed"},
+      {tune("--record " + path("nan.csv")), "nan.csv:4: column 5: not finite"},
+      {tune("--record " + path("columns.csv")), "columns.csv:3: wrong columns"},
+      {tune("--record " + path("other.csv")), "recorded on scenario 'scenario-2', not 'climb'"},
+      {tune("--holdout " + path("missing.yaml")), "missing.yaml"},
+      {"tune --scenario " + path("missing.yaml") + " --out " + path("out"), "missing.yaml"},
+  };
+  for (const auto& c : cases) {
+    const Output output = thetad(c.arguments);
+    EXPECT_EQ(output.status, 1) << c.arguments;
+    EXPECT_THAT(output.err, StartsWith("thetad: error: ")) << c.arguments;
+    EXPECT_THAT(output.err, HasSubstr(c.message)) << c.arguments;
+    EXPECT_EQ(std::count(output.err.begin(), output.err.end(), '\n'), 1) << output.err;
+    EXPECT_FALSE(fs::exists(dir_ / "out")) << c.arguments;
+  }
+}
+
+TEST_F(TuneCommand, WritesASettingsFileThatRunAcceptsAndReusesItsRecord) {
+  const Output first = thetad(tune("--record " + path("record.csv")));
+  ASSERT_EQ(first.status, 0) << first.err;
+  EXPECT_THAT(first.out, HasSubstr("scenario=climb samples=200 terms=3 algorithm=LN_BOBYQA"));
+  EXPECT_THAT(first.out, HasSubstr("validation scenario=climb role=tuning theta_d=tuned status=\"completed\""));
+  for (const char* file : {"theta-d-tuned.yaml", "sigma-curves.csv", "tuning.json"}) EXPECT_TRUE(fs::exists(dir_ / "out" / file)) << file;
+  EXPECT_TRUE(fs::exists(dir_ / "record.csv"));
+
+  const Output run = thetad("run --scenario " + path("climb.yaml") + " --ideal --controller theta-d --settings " +
+                            path("out/theta-d-tuned.yaml") + " --out " + path("run"));
+  EXPECT_EQ(run.status, 0) << run.err;
+
+  // Reusing the record skips the flight and gives the same fit, bit for bit.
+  const Output second = thetad(tune("--record " + path("record.csv") + " --no-validation"));
+  ASSERT_EQ(second.status, 0) << second.err;
+  EXPECT_THAT(second.err, Not(HasSubstr("sdre (record)")));
+  const auto line = [](const std::string& text, const std::string& key) {
+    const auto begin = text.find("\n" + key);
+    return text.substr(begin, text.find('\n', begin + 1) - begin);
+  };
+  EXPECT_EQ(line(second.out, "k="), line(first.out, "k="));
+  EXPECT_EQ(line(second.out, "l="), line(first.out, "l="));
+}
+
+}  // namespace

@@ -1,0 +1,77 @@
+#pragma once
+
+// Step 1 of the k_i, l_i fit (spec §7.5): fly the SDRE controller and keep, at every kept
+// controller sample, the time, the state it saw, the input at which its F, B were evaluated and
+// σ_max of its P. Saved as CSV so that fits rerun without re-flying.
+
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "controllers/controller.hpp"
+#include "controllers/sdre.hpp"
+#include "core/helicopter/model_options.hpp"
+#include "core/sim/simulator.hpp"
+
+namespace thetad::tuning {
+
+struct TuningRecord {
+  std::string scenario;       // name of the flown scenario: a reused record must match it
+  std::vector<double> time;   // t_k (s), the simulator's time of the controller sample
+  Eigen::MatrixXd states;     // n × K: the measured state x_k the SDRE saw
+  Eigen::MatrixXd inputs;     // m × K: the input u_k at which F(x_k; u_k), B(x_k; u_k) are taken
+  Eigen::VectorXd sigma_sdre; // K: σ_max(P_SDRE(x_k; u_k)) of Eq. (37)
+
+  Eigen::Index size() const { return static_cast<Eigen::Index>(time.size()); }
+};
+
+// Flies like the wrapped SDRE and keeps the measured state and the applied input of every
+// `every`-th controller sample. The applied input is the converged fixed point of spec §7.6, so
+// the record's P and the θ–D's ΣT_i are both taken at the same (x_k; u_k): the fit compares the
+// two value matrices of one SDC, whatever the fixed point's last correction was. A Controller so
+// that anything that flies controllers (the command line's progress display) flies it too.
+class SdreRecorder final : public Controller {
+ public:
+  // `expected_samples`: the run's controller samples, so that control() never allocates.
+  SdreRecorder(const SdreController& sdre, int every, Eigen::Index expected_samples);
+
+  std::string name() const override { return sdre_.name(); }
+  std::unique_ptr<Controller> clone() const override { return std::make_unique<SdreRecorder>(*this); }
+  void reset(const Eigen::VectorXd& x0, double t0) override;
+  void control(double t, const Eigen::Ref<const Eigen::VectorXd>& measured_state, const sim::Reference& reference,
+               Eigen::Ref<Eigen::VectorXd> u) override;
+  std::vector<std::pair<std::string, double>> counters() const override { return sdre_.counters(); }
+
+  // The kept samples with σ_max(P) from a cold CARE solve at each (x_k; u_k), spread over
+  // `threads` threads. Throws thetad::Error when a CARE fails or nothing was recorded.
+  TuningRecord finish(const std::string& scenario, int threads) const;
+
+ private:
+  SdreController sdre_;
+  int every_;
+  long sample_ = 0;
+  std::vector<double> time_;
+  std::vector<double> states_, inputs_;  // column-major n × K and m × K as they grow
+};
+
+// Flies `sdre` (wrapped in an SdreRecorder) through `reference` from x0 and returns the record.
+// Throws thetad::Error if the flight diverges: a record that stops early would tune on a partial
+// trajectory without saying so.
+TuningRecord record_sdre_flight(const SdreController& sdre, const std::string& scenario,
+                                const sim::ReferenceTrajectory& reference, const Eigen::VectorXd& x0,
+                                const sim::SimulationSettings& settings, const heli::ModelOptions& options,
+                                int every = 10, int threads = 2);
+
+// CSV: two comment lines (format, scenario), then the header t_s,x_0..x_{n-1},u_0..u_{m-1},sigma_max_P
+// and one row per sample in %.17g (exact round trip). Written atomically.
+std::string record_csv(const TuningRecord& record);
+void write_record(const std::filesystem::path& file, const TuningRecord& record);
+// Reads a record written by write_record for a plant with n states and m inputs. Throws
+// thetad::Error naming the file and line for a missing file, a wrong header (column names or
+// count), a short row, a non-number, a non-finite value, non-increasing time or no rows.
+TuningRecord read_record(const std::filesystem::path& file, Eigen::Index n, Eigen::Index m);
+
+}  // namespace thetad::tuning
