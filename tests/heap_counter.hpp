@@ -3,8 +3,6 @@
 // Counts heap allocations, for the tests that check a hot path allocates nothing. Eigen and
 // operator new both end in malloc, so malloc is interposed (glibc's __libc_malloc does the work).
 // It defines malloc: include it from exactly one source file of a test executable.
-// (tests/core/helicopter_test.cpp, controllers/theta_d_test.cpp and core/lyapunov_test.cpp carry
-// their own copies of this interposer; they can include this header instead.)
 
 #include <atomic>
 #include <cstddef>

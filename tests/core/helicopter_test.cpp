@@ -18,22 +18,7 @@
 
 #include "core/error.hpp"
 #include "core/helicopter/forces.hpp"
-
-// Counts heap allocations while armed, to check that f and sdc allocate nothing. Eigen and
-// operator new both end in malloc, so malloc is interposed (glibc's __libc_malloc does the work).
-namespace {
-std::atomic<bool> g_count_allocations{false};
-std::atomic<long> g_allocations{0};
-}  // namespace
-
-#if defined(__GLIBC__) && !defined(__SANITIZE_ADDRESS__)
-#define THETAD_COUNT_MALLOC 1
-extern "C" void* __libc_malloc(std::size_t size);
-extern "C" void* malloc(std::size_t size) noexcept {
-  if (g_count_allocations.load(std::memory_order_relaxed)) g_allocations.fetch_add(1, std::memory_order_relaxed);
-  return __libc_malloc(size);
-}
-#endif
+#include "tests/heap_counter.hpp"
 
 namespace thetad::heli {
 namespace {
@@ -188,15 +173,10 @@ TEST(HelicopterSdc, SdcEqualsSdcAtTheSolvedRotorSpeed) {
 }
 
 TEST(HelicopterSdc, HotPathAllocatesNothing) {
-#ifndef THETAD_COUNT_MALLOC
-  GTEST_SKIP() << "malloc cannot be interposed in this build";
-#endif
   // The counter works: a dynamic Eigen vector allocates.
-  g_allocations = 0;
-  g_count_allocations = true;
-  { const Eigen::VectorXd probe = Eigen::VectorXd::Ones(64); EXPECT_EQ(probe.size(), 64); }
-  g_count_allocations = false;
-  ASSERT_GT(g_allocations.load(), 0);
+  const long probe = thetad::testing::heap_allocations_during([] { Eigen::VectorXd v = Eigen::VectorXd::Ones(64); });
+  if (probe < 0) GTEST_SKIP() << "malloc cannot be interposed in this build";
+  ASSERT_GT(probe, 0);
 
   Helicopter heli;
   std::mt19937_64 rng(9);
@@ -206,14 +186,13 @@ TEST(HelicopterSdc, HotPathAllocatesNothing) {
   Matrix18 F;
   Matrix18x5 B;
   Eigen::VectorXd xd(kStateDim);
-  g_allocations = 0;
-  g_count_allocations = true;
-  heli.f(x, u, xdot);
-  heli.f(x, u, xd);
-  heli.sdc(x, u, F, B);
-  heli.sdc_at_rotor_speed(x, 170.0, F, B);
-  g_count_allocations = false;
-  EXPECT_EQ(g_allocations.load(), 0);
+  EXPECT_EQ(thetad::testing::heap_allocations_during([&] {
+              heli.f(x, u, xdot);
+              heli.f(x, u, xd);
+              heli.sdc(x, u, F, B);
+              heli.sdc_at_rotor_speed(x, 170.0, F, B);
+            }),
+            0);
 }
 
 // Spec §10.3: A0 = F and g0 = B at rest, s = 1, T_mr = m g, resolved preset.

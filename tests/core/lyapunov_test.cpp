@@ -12,60 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.hpp"
-
-// Heap accounting for the no-allocation test. Two doors lead to the heap: operator new (the
-// standard library) and malloc, which Eigen calls directly (aligned_malloc), so counting
-// operator new alone would miss every Eigen temporary. Both are counted, except under
-// AddressSanitizer, which owns malloc itself: there the test is skipped.
-#if defined(__SANITIZE_ADDRESS__)
-#define THETAD_UNDER_ASAN 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define THETAD_UNDER_ASAN 1
-#endif
-#endif
-
-namespace {
-std::atomic<long> heap_calls{0};
-}  // namespace
-
-#if !defined(THETAD_UNDER_ASAN)
-extern "C" {
-void* __libc_malloc(std::size_t size);
-void* __libc_calloc(std::size_t count, std::size_t size);
-void* __libc_realloc(void* p, std::size_t size);
-void __libc_free(void* p);
-
-void* malloc(std::size_t size) noexcept {
-  ++heap_calls;
-  return __libc_malloc(size);
-}
-void* calloc(std::size_t count, std::size_t size) noexcept {
-  ++heap_calls;
-  return __libc_calloc(count, size);
-}
-void* realloc(void* p, std::size_t size) noexcept {
-  ++heap_calls;
-  return __libc_realloc(p, size);
-}
-void free(void* p) noexcept { __libc_free(p); }
-}
-
-void* operator new(std::size_t size) {
-  ++heap_calls;
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t size) {
-  ++heap_calls;
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
-#endif
+#include "tests/heap_counter.hpp"
 
 namespace thetad {
 namespace {
@@ -220,22 +167,21 @@ TEST(ConstantLyapunovSolver, ThrowsOnBadInput) {
 }
 
 TEST(ConstantLyapunovSolver, SolveAllocatesNothing) {
-#if defined(THETAD_UNDER_ASAN)
-  GTEST_SKIP() << "AddressSanitizer owns malloc, through which Eigen allocates";
-#endif
   std::mt19937_64 rng(5);
   const Eigen::Index n = 18;
   const ConstantLyapunovSolver solver(random_stable(n, rng));
   const MatrixXd Q = random_symmetric_psd(n, rng);
   MatrixXd X(n, n);
-  // The counters must see a real allocation, or a zero below would prove nothing.
-  const long before_probe = heap_calls;
-  const MatrixXd probe = solver.solve(Q);
-  EXPECT_GT(heap_calls - before_probe, 0);
+  // The counter must see a real allocation, or a zero below would prove nothing.
+  MatrixXd probe;
+  const long probe_allocations = thetad::testing::heap_allocations_during([&] { probe = solver.solve(Q); });
+  if (probe_allocations < 0) GTEST_SKIP() << "malloc cannot be interposed in this build (AddressSanitizer)";
+  EXPECT_GT(probe_allocations, 0);
 
-  const long before = heap_calls;
-  for (int i = 0; i < 10; ++i) solver.solve(Q, X);
-  EXPECT_EQ(heap_calls - before, 0);
+  EXPECT_EQ(thetad::testing::heap_allocations_during([&] {
+              for (int i = 0; i < 10; ++i) solver.solve(Q, X);
+            }),
+            0);
   EXPECT_EQ(X, probe);
 }
 
