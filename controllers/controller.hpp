@@ -19,11 +19,6 @@ namespace thetad {
 class Controller : public sim::ControlLaw {
  public:
   virtual std::unique_ptr<Controller> clone() const = 0;
-
-  // Named event counts since the last reset() that a run summary reports next to the tracking
-  // figures, e.g. the SDRE's CARE failures that fell back to the last good solution. A controller
-  // that has nothing to report keeps this default (none).
-  virtual std::vector<std::pair<std::string, double>> counters() const { return {}; }
 };
 
 }  // namespace thetad

@@ -190,6 +190,7 @@ int run_run(const RunArguments& arguments) {
               s.command_rms[0], s.command_rms[1], s.command_rms[2], s.command_rms[3], s.command_rms[4], s.cost);
   std::printf("Control compute time per step: median %.1f us, p99 %.1f us.\n", s.compute_ns_median * 1e-3,
               s.compute_ns_p99 * 1e-3);
+  for (const auto& [counter, count] : s.controller_counters) std::printf("Controller counter %s: %g.\n", counter.c_str(), count);
   std::printf("Wrote %s and %s.\n", files.csv.c_str(), files.json.c_str());
   return 0;
 }

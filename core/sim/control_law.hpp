@@ -2,6 +2,7 @@
 
 #include <string>
 #include <utility>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -63,6 +64,11 @@ class ControlLaw {
   virtual void reset(const Eigen::VectorXd& x0, double t0) = 0;
   virtual void control(double t, const Eigen::Ref<const Eigen::VectorXd>& measured_state,
                        const Reference& reference, Eigen::Ref<Eigen::VectorXd> u) = 0;
+
+  // Named event counts since the last reset() that the run summary reports next to the tracking
+  // figures, e.g. the SDRE's CARE failures that fell back to the last good solution. A law that
+  // has nothing to report keeps this default (none).
+  virtual std::vector<std::pair<std::string, double>> counters() const { return {}; }
 };
 
 // Applies a fixed input whatever the state: open-loop runs and tests.

@@ -340,6 +340,7 @@ RunResult simulate(ControlLaw& law, const ReferenceTrajectory& reference, const 
     summary.rms_tracking_error = (error_square_sum / n).cwiseSqrt();
     summary.command_rms = (command_square_sum / n).cwiseSqrt();
   }
+  summary.controller_counters = law.counters();
   const ComputeTimeStatistics timing = statistics(std::move(compute_ns));
   summary.compute_ns_mean = timing.mean;
   summary.compute_ns_median = timing.median;
@@ -372,6 +373,9 @@ std::string summary_json(const RunSummary& summary) {
   nlohmann::ordered_json factors = nlohmann::ordered_json::object();
   for (const auto& [name, factor] : summary.parameter_factors) factors[name] = factor;
   j["parameter_factors"] = factors;
+  nlohmann::ordered_json counters = nlohmann::ordered_json::object();
+  for (const auto& [name, count] : summary.controller_counters) counters[name] = count;
+  j["controller_counters"] = counters;
   j["settings"] = settings_json(summary.settings);
   j["tracking_error_m"] = {{"axes", {"x", "y", "z"}},
                            {"rms", vector3(summary.rms_tracking_error)},

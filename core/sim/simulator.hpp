@@ -86,6 +86,8 @@ struct RunSummary {
   // parameter_uncertainty is off.
   std::vector<std::pair<std::string, double>> parameter_factors;
   std::int64_t controller_samples = 0;  // samples whose control was computed
+  // The controller's own event counts at the end of the run (ControlLaw::counters()).
+  std::vector<std::pair<std::string, double>> controller_counters;
   // True position minus reference over the controller samples (m).
   Eigen::Vector3d rms_tracking_error = Eigen::Vector3d::Zero();
   Eigen::Vector3d max_tracking_error = Eigen::Vector3d::Zero();

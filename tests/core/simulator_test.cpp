@@ -227,6 +227,29 @@ TEST(Simulator, ControllerErrorEndsTheRunAsDiverged) {
   EXPECT_EQ(result.summary.controller_samples, 50);
 }
 
+// A controller's own event counts (the SDRE's Riccati fallbacks, say) reach the summary and its JSON.
+TEST(Simulator, SummaryCarriesTheControllerCounters) {
+  class Counting final : public ControlLaw {
+   public:
+    std::string name() const override { return "counting"; }
+    void reset(const Eigen::VectorXd&, double) override { samples = 0; }
+    void control(double, const Eigen::Ref<const Eigen::VectorXd>&, const Reference&,
+                 Eigen::Ref<Eigen::VectorXd> u) override {
+      ++samples;
+      u = hover_trim_input();
+    }
+    std::vector<std::pair<std::string, double>> counters() const override { return {{"samples_seen", samples}}; }
+    int samples = 0;
+  } counting;
+  SimulationSettings settings = SimulationSettings::ideal();
+  settings.duration = 0.03;
+  const RunResult result = simulate(counting, kHoverPoint, hover_trim_state(), settings);
+  ASSERT_EQ(result.summary.controller_counters.size(), 1u);
+  EXPECT_EQ(result.summary.controller_counters[0].second, 30.0);
+  const auto json = nlohmann::json::parse(summary_json(result.summary));
+  EXPECT_EQ(json["controller_counters"]["samples_seen"], 30.0);
+}
+
 TEST(Simulator, NonFiniteInitialStateStopsBeforeTheFirstSample) {
   ConstantInput hold(hover_trim_input());
   Eigen::VectorXd x0 = hover_trim_state();
