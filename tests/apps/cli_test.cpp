@@ -10,6 +10,8 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+
+#include "tests/apps/run_thetad.hpp"
 #include <nlohmann/json.hpp>
 
 namespace {
@@ -18,20 +20,10 @@ namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 using ::testing::Not;
 
-std::string read(const fs::path& file) {
-  std::ifstream in(file);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using thetad::testing::Output;
+std::string read(const fs::path& file) { return thetad::testing::read_text(file); }
 
 void write(const fs::path& file, const std::string& text) { std::ofstream(file) << text; }
-
-struct Output {
-  int status = -1;
-  std::string out;
-  std::string err;
-};
 
 class Cli : public ::testing::Test {
  protected:
@@ -46,16 +38,7 @@ class Cli : public ::testing::Test {
   void TearDown() override { fs::remove_all(dir_); }
 
   // thetad with `arguments` (a shell command line tail), CI set so progress comes as plain lines.
-  Output thetad(const std::string& arguments) const {
-    const std::string command = "CI=1 " + std::string(THETAD_BINARY) + " " + arguments + " >" +
-                                (dir_ / "stdout.txt").string() + " 2>" + (dir_ / "stderr.txt").string();
-    const int raw = std::system(command.c_str());
-    Output output;
-    output.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    output.out = read(dir_ / "stdout.txt");
-    output.err = read(dir_ / "stderr.txt");
-    return output;
-  }
+  Output thetad(const std::string& arguments) const { return thetad::testing::run_thetad(dir_, arguments); }
 
   std::string path(const std::string& name) const { return (dir_ / name).string(); }
 

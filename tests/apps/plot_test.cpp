@@ -12,17 +12,15 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "tests/apps/run_thetad.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
-std::string read(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using thetad::testing::Output;
+std::string read(const fs::path& file) { return thetad::testing::read_text(file); }
 
 void write(const fs::path& file, const std::string& text) { std::ofstream(file, std::ios::binary) << text; }
 
@@ -33,18 +31,8 @@ void replace_once(const fs::path& file, const std::string& from, const std::stri
   write(file, text.replace(at, from.size(), to));
 }
 
-struct Output {
-  int status = -1;
-  std::string out;
-  std::string err;
-};
-
-// `environment` (VAR=value ...) and thetad with `arguments`, output captured in `directory`.
 Output thetad(const fs::path& directory, const std::string& arguments, const std::string& environment = "") {
-  const std::string command = "CI=1 " + environment + " " + std::string(THETAD_BINARY) + " " + arguments + " >" +
-                              (directory / "stdout.txt").string() + " 2>" + (directory / "stderr.txt").string();
-  const int raw = std::system(command.c_str());
-  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, read(directory / "stdout.txt"), read(directory / "stderr.txt")};
+  return thetad::testing::run_thetad(directory, arguments, environment);
 }
 
 // Every figure the plot command draws: the paper's kinds (Figs. 2-9 / 10-17) and the comparisons.

@@ -13,6 +13,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "tests/apps/run_thetad.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -20,20 +22,7 @@ using ::testing::HasSubstr;
 using ::testing::Not;
 using ::testing::StartsWith;
 
-std::string read(const fs::path& file) {
-  std::ifstream in(file);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-// The program sits next to the tests in the build tree: <build>/apps/thetad and <build>/tests/<test>.
-fs::path thetad_binary() { return fs::read_symlink("/proc/self/exe").parent_path().parent_path() / "apps" / "thetad"; }
-
-struct Output {
-  int status = -1;
-  std::string out, err;
-};
+using thetad::testing::Output;
 
 class TuneCommand : public ::testing::Test {
  protected:
@@ -48,12 +37,7 @@ class TuneCommand : public ::testing::Test {
   }
   void TearDown() override { fs::remove_all(dir_); }
 
-  Output thetad(const std::string& arguments) const {
-    const std::string command = "CI=1 " + thetad_binary().string() + " " + arguments + " >" + path("stdout.txt") +
-                                " 2>" + path("stderr.txt");
-    const int raw = std::system(command.c_str());
-    return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, read(dir_ / "stdout.txt"), read(dir_ / "stderr.txt")};
-  }
+  Output thetad(const std::string& arguments) const { return thetad::testing::run_thetad(dir_, arguments); }
   std::string path(const std::string& name) const { return (dir_ / name).string(); }
   std::string tune(const std::string& extra) const {
     return "tune --scenario " + path("climb.yaml") + " --ideal --out " + path("out") + " " + extra;
