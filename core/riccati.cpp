@@ -4,11 +4,13 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include "core/error.hpp"
 #include "core/lapack.hpp"
 #include "core/lyapunov.hpp"
+#include "core/matrix_sign.hpp"
 
 namespace thetad {
 namespace {
@@ -144,37 +146,146 @@ CareResult finish(const MatrixRef& A, const MatrixRef& B, const Weights& w, Solu
 
 lapack_logical is_stable(const double* re, const double* /*im*/) { return *re < 0.0; }
 
-}  // namespace
-
-CareResult solve_care(const MatrixRef& A, const MatrixRef& B, const MatrixRef& Q, const MatrixRef& R) {
-  check_inputs(A, B, Q, R);
-  const Weights w = prepare_weights(B, Q, R);
+// H = [A, −G; −Q, −A'].
+MatrixXd hamiltonian(const MatrixRef& A, const Weights& w) {
   const Index n = A.rows();
-  const lapack_int n2 = static_cast<lapack_int>(2 * n);
-
   MatrixXd H(2 * n, 2 * n);
-  MatrixXd U(2 * n, 2 * n);
   H.topLeftCorner(n, n) = A;
   H.topRightCorner(n, n).noalias() = -w.W.transpose() * w.W;
   H.bottomLeftCorner(n, n) = -w.Q;
   H.bottomRightCorner(n, n) = -A.transpose();
+  return H;
+}
 
-  const double g_norm = H.topRightCorner(n, n).norm();
+// A P with everything finish() and the refinement need about it.
+struct Candidate {
+  MatrixXd P;
+  MatrixXd WP;
+  MatrixXd Res;
+  double eta;  // normwise backward error, see backward_error()
+};
 
-  // Scaling only (no permutation), H_bal = D⁻¹ H D: weights spanning 1e0…1e7 make H badly
-  // scaled, and on the helicopter plant the unbalanced solution was off by 1.8e-5. D is computed
-  // on H without its diagonal, as scipy does: LAPACK ≥ 3.5 dgebal counts the diagonal in its
-  // norms, and the large diagonal of A and −A' then hides the imbalance of G and Q (CAREX 2.1
-  // went from 2e-5 to 1e-16 relative error, 2.7 from 1e-3 to 1e-10).
-  MatrixXd& M = U;  // U is free until dgees writes the Schur vectors
-  M = H;
+// η = ‖Res‖_F / (‖Q‖_F + 2‖A‖_F‖P‖_F + ‖G‖_F‖P‖_F²): the residual against the size of the terms
+// that make it up, at rounding level for a backward-stable solution however ill-conditioned
+// the equation is.
+Candidate evaluate(const MatrixRef& A, const Weights& w, double g_norm, MatrixXd P) {
+  Candidate c{std::move(P), {}, MatrixXd(A.rows(), A.cols()), 0.0};
+  c.WP.noalias() = w.W * c.P;
+  care_residual(A, w, c.P, c.WP, c.Res);
+  const double p_norm = c.P.norm();
+  c.eta = c.Res.norm() / (w.Q.norm() + 2.0 * A.norm() * p_norm + g_norm * p_norm * p_norm);
+  return c;
+}
+
+// Newton refinement only when a direct solution is not backward stable. Measured: η is at
+// rounding level on the helicopter plant, CAREX 1.x–4.1 and random systems, and one Newton step
+// there gains nothing and can cost forward accuracy (CAREX 2.4: 3e-11 → 1.4e-9 relative error);
+// on the badly scaled CAREX 2.6, η = 2.4e-4 after the Schur method and two steps bring the error
+// from 9e-4 to 1e-12.
+constexpr double kRefineAbove = 1e-12;
+
+// Returns the refinement steps taken; c is replaced only by better candidates.
+int refine(const MatrixRef& A, const Weights& w, double g_norm, Candidate& c) {
+  constexpr int kMaxRefinements = 4;
+  int refinements = 0;
+  while (c.eta > kRefineAbove && refinements < kMaxRefinements) {
+    MatrixXd Ak = A;
+    Ak.noalias() -= w.W.transpose() * c.WP;
+    MatrixXd refined;
+    try {
+      refined = c.P + solve_lyapunov(Ak, c.Res);
+    } catch (const Error&) {
+      break;  // A − GP is not Hurwitz: finish() reports that with the eigenvalue
+    }
+    Candidate next = evaluate(A, w, g_norm, 0.5 * (refined + refined.transpose()));
+    if (!(next.eta < c.eta)) break;
+    c = std::move(next);
+    ++refinements;
+  }
+  return refinements;
+}
+
+// Both direct methods work on a diagonally scaled H_s = D⁻¹ H D, D = diag(d); a basis of the
+// stable subspace of H is D times one of H_s's, so [I; P_s] for H_s gives P = D2 P_s D1⁻¹.
+struct ScaledHamiltonian {
+  MatrixXd H;  // D⁻¹ H D
+  Eigen::VectorXd d;
+
+  MatrixXd unscale(const MatrixXd& P_s) const {
+    const Index n = P_s.rows();
+    const MatrixXd P = d.tail(n).asDiagonal() * P_s * d.head(n).cwiseInverse().asDiagonal();
+    return 0.5 * (P + P.transpose());
+  }
+};
+
+ScaledHamiltonian scaled(const MatrixXd& H, Eigen::VectorXd d) {
+  return {d.cwiseInverse().asDiagonal() * H * d.asDiagonal(), std::move(d)};
+}
+
+// For the Schur method, balancing only (no permutation): weights spanning 1e0…1e7 make H badly
+// scaled, and on the helicopter plant the unbalanced Schur solution was off by 1.8e-5. D is
+// computed on H without its diagonal, as scipy does: LAPACK ≥ 3.5 dgebal counts the diagonal in
+// its norms, and the large diagonal of A and −A' then hides the imbalance of G and Q (CAREX 2.1
+// went from 2e-5 to 1e-16 relative error, 2.7 from 1e-3 to 1e-10).
+ScaledHamiltonian balanced(const MatrixXd& H) {
+  const lapack_int n2 = static_cast<lapack_int>(H.rows());
+  MatrixXd M = H;
   M.diagonal().setZero();
-  Eigen::VectorXd d(2 * n);
+  Eigen::VectorXd d(n2);
   lapack_int ilo = 0;
   lapack_int ihi = 0;
   if (LAPACKE_dgebal(LAPACK_COL_MAJOR, 'S', n2, M.data(), n2, &ilo, &ihi, d.data()) != 0)
     fail("balancing the Hamiltonian failed (LAPACK dgebal)");
-  H = d.cwiseInverse().asDiagonal() * H * d.asDiagonal();
+  return scaled(H, std::move(d));
+}
+
+// For the sign function, one scalar that gives G and Q the same 1-norm, as SB02MD's SCAL = 'G'
+// (D = diag(I, sI) keeps H Hamiltonian). Measured against 40-digit reference solutions (see
+// docs/performance.md): with it the sign function's forward error on the paper problem is
+// 1.6e-15 and on random paper-scaled problems on a par with SB02MD; with the Schur method's
+// balancing instead it was up to 20× worse than SB02MD on the random problems.
+ScaledHamiltonian equilibrated(const MatrixXd& H) {
+  const Index n = H.rows() / 2;
+  const double q_norm = H.bottomLeftCorner(n, n).cwiseAbs().colwise().sum().maxCoeff();
+  const double g_norm = H.topRightCorner(n, n).cwiseAbs().colwise().sum().maxCoeff();
+  Eigen::VectorXd d = Eigen::VectorXd::Ones(2 * n);
+  if (q_norm > 0.0 && g_norm > 0.0) d.tail(n).setConstant(std::sqrt(q_norm / g_norm));
+  return scaled(H, std::move(d));
+}
+
+// Scaled Newton needs about 10 inversions on the paper's problem and 11 on random ones; 40 is
+// reached only near the imaginary axis, where the Schur method is the one to trust.
+constexpr int kSignIterations = 40;
+
+// The stable invariant subspace [I; P] of H is the null space of sign(H) + I:
+// [S12; S22 + I] P = −[S11 + I; S21], 2n consistent equations for n columns, solved by QR.
+// Empty when the iteration fails or the system has no unique solution (no stabilizing P): the
+// Schur method then says which.
+std::optional<MatrixXd> sign_solution(const ScaledHamiltonian& scaled_h, int& iterations) {
+  const Index n = scaled_h.H.rows() / 2;
+  const std::optional<MatrixSign> sign = matrix_sign(scaled_h.H, kSignIterations);
+  if (!sign) return std::nullopt;
+  iterations = sign->iterations;
+  const MatrixXd& S = sign->sign;
+  MatrixXd lhs(2 * n, n);
+  MatrixXd rhs(2 * n, n);
+  lhs << S.topRightCorner(n, n), S.bottomRightCorner(n, n) + MatrixXd::Identity(n, n);
+  rhs << S.topLeftCorner(n, n) + MatrixXd::Identity(n, n), S.bottomLeftCorner(n, n);
+  const Eigen::HouseholderQR<MatrixXd> qr(lhs);
+  const Eigen::VectorXd r_diagonal = qr.matrixQR().diagonal().cwiseAbs();
+  if (!(r_diagonal.minCoeff() > static_cast<double>(2 * n) * kEps * r_diagonal.maxCoeff())) return std::nullopt;
+  const MatrixXd P_s = -qr.solve(rhs);
+  if (!P_s.allFinite()) return std::nullopt;
+  return scaled_h.unscale(P_s);
+}
+
+// Laub's method on the balanced H; throws with the reason when there is no stabilizing solution.
+// The stable eigenvalues of H, which are eig(A − GP), come back in `stable`.
+MatrixXd schur_solution(const ScaledHamiltonian& scaled_h, Eigen::VectorXcd& stable) {
+  MatrixXd H = scaled_h.H;
+  const Index n = H.rows() / 2;
+  const lapack_int n2 = static_cast<lapack_int>(2 * n);
+  MatrixXd U(2 * n, 2 * n);
   const double h_norm = H.norm();
 
   Eigen::VectorXd wr(2 * n);
@@ -204,62 +315,57 @@ CareResult solve_care(const MatrixRef& A, const MatrixRef& B, const MatrixRef& Q
          " eigenvalues with Re λ < 0, " + std::to_string(n) + " needed (min |Re λ| = " + num(min_abs_real) +
          ")" + kStabilizabilityHint);
 
-  // The balanced basis [U1; U2] is orthonormal, so rcond(U1) measures how far the stable
-  // subspace is from a graph subspace; the basis of H's subspace is D·U, so
-  // P = D2 U2 U1⁻¹ D1⁻¹.
+  // The basis [U1; U2] is orthonormal, so rcond(U1) measures how far the stable subspace is from
+  // a graph subspace; P_bal = U2 U1⁻¹.
   const Eigen::PartialPivLU<MatrixXd> lu(U.topLeftCorner(n, n).transpose());
   const double rcond = lu.rcond();
   if (!(rcond >= kEps))
     fail("no stabilizing solution: U1 of the stable invariant subspace [U1; U2] is singular to working "
          "precision (rcond(U1) = " + num(rcond) + ")" + kStabilizabilityHint);
-  MatrixXd P = lu.solve(U.bottomLeftCorner(n, n).transpose()).transpose();
-  P = d.tail(n).asDiagonal() * P * d.head(n).cwiseInverse().asDiagonal();
-  P = 0.5 * (P + P.transpose()).eval();
-
-  // Newton refinement only when the Schur solution is not backward stable, measured by the
-  // normwise residual η = ‖Res‖_F / (‖Q‖_F + 2‖A‖_F‖P‖_F + ‖G‖_F‖P‖_F²). Measured: η is at rounding level on
-  // the helicopter plant, CAREX 1.x–4.1 and random systems, and one Newton step there gains
-  // nothing and can cost forward accuracy (CAREX 2.4: 3e-11 → 1.4e-9 relative error); on the
-  // badly scaled CAREX 2.6, η = 2.4e-4 and two steps bring the error from 9e-4 to 1e-12.
-  const double a_norm = A.norm();
-  auto backward_error = [&](const MatrixXd& X, const MatrixXd& Res) {
-    const double x_norm = X.norm();
-    return Res.norm() / (w.Q.norm() + 2.0 * a_norm * x_norm + g_norm * x_norm * x_norm);
-  };
-  MatrixXd WP = w.W * P;
-  MatrixXd Res(n, n);
-  care_residual(A, w, P, WP, Res);
-  double eta = backward_error(P, Res);
-  int refinements = 0;
-  constexpr double kRefineAbove = 1e-12;
-  constexpr int kMaxRefinements = 4;
-  while (eta > kRefineAbove && refinements < kMaxRefinements) {
-    MatrixXd Ak = A;
-    Ak.noalias() -= w.W.transpose() * WP;
-    MatrixXd refined;
-    try {
-      refined = P + solve_lyapunov(Ak, Res);
-    } catch (const Error&) {
-      break;  // A − GP is not Hurwitz: finish() reports that with the eigenvalue
-    }
-    refined = 0.5 * (refined + refined.transpose()).eval();
-    const MatrixXd refined_WP = w.W * refined;
-    MatrixXd refined_Res(n, n);
-    care_residual(A, w, refined, refined_WP, refined_Res);
-    const double refined_eta = backward_error(refined, refined_Res);
-    if (!(refined_eta < eta)) break;
-    P = std::move(refined);
-    WP = refined_WP;
-    Res = std::move(refined_Res);
-    eta = refined_eta;
-    ++refinements;
-  }
-  // eig(A − GP) are the stable eigenvalues of H for the P of its stable subspace: the Schur form
-  // has them (dgees ordered them first), which saves an eigensolver on the SDRE's hot path. A
-  // refined P is no longer that P exactly, so its spectrum is computed afresh.
-  Eigen::VectorXcd stable(n);
+  stable.resize(n);
   for (Index i = 0; i < n; ++i) stable(i) = {wr(i), wi(i)};
-  return finish(A, B, w, {std::move(P), std::move(WP), &Res, refinements == 0 ? &stable : nullptr}, refinements);
+  return scaled_h.unscale(lu.solve(U.bottomLeftCorner(n, n).transpose()).transpose());
+}
+
+}  // namespace
+
+CareResult solve_care(const MatrixRef& A, const MatrixRef& B, const MatrixRef& Q, const MatrixRef& R,
+                      CareMethod method) {
+  check_inputs(A, B, Q, R);
+  const Weights w = prepare_weights(B, Q, R);
+  const Index n = A.rows();
+  const MatrixXd H = hamiltonian(A, w);
+  const double g_norm = H.topRightCorner(n, n).norm();
+
+  if (method != CareMethod::schur) {
+    int sign_iterations = 0;
+    if (std::optional<MatrixXd> P = sign_solution(equilibrated(H), sign_iterations)) {
+      Candidate c = evaluate(A, w, g_norm, std::move(*P));
+      if (c.eta <= kRefineAbove || method == CareMethod::matrix_sign) {
+        const int refinements = refine(A, w, g_norm, c);
+        if (c.eta > kRefineAbove)
+          fail("the matrix sign solution is not backward stable (normwise residual " + num(c.eta) + " after " +
+               std::to_string(refinements) + " Newton refinement steps); CareMethod::schur or automatic solves "
+               "this equation");
+        CareResult result = finish(A, B, w, {std::move(c.P), std::move(c.WP), &c.Res, nullptr}, refinements);
+        result.sign_iterations = sign_iterations;
+        return result;
+      }
+    } else if (method == CareMethod::matrix_sign) {
+      fail("the matrix sign iteration on the Hamiltonian failed (a singular iterate, no convergence in " +
+           std::to_string(kSignIterations) + " inversions, or no unique P; CareMethod::schur says which)" +
+           kStabilizabilityHint);
+    }
+  }
+
+  Eigen::VectorXcd stable;
+  Candidate c = evaluate(A, w, g_norm, schur_solution(balanced(H), stable));
+  const int refinements = refine(A, w, g_norm, c);
+  // eig(A − GP) are the stable eigenvalues of H for the P of its stable subspace: the Schur form
+  // has them (dgees ordered them first), which saves an eigensolver. A
+  // refined P is no longer that P exactly, so its spectrum is computed afresh.
+  return finish(A, B, w, {std::move(c.P), std::move(c.WP), &c.Res, refinements == 0 ? &stable : nullptr},
+                refinements);
 }
 
 CareResult solve_care_newton(const MatrixRef& A, const MatrixRef& B, const MatrixRef& Q, const MatrixRef& R,

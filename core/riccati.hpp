@@ -25,6 +25,23 @@
 
 namespace thetad {
 
+// How solve_care finds the stable invariant subspace of the Hamiltonian
+// H = [A, −G; −Q, −A'], G = B R⁻¹ B'. docs/performance.md compares them with SLICOT SB02MD.
+enum class CareMethod {
+  // The matrix sign function, and Laub's Schur method whenever the sign iteration fails (a
+  // Hamiltonian eigenvalue on or near the imaginary axis, no stabilizing solution) or its
+  // solution is not backward stable: the speed of the first, the diagnostics of the second.
+  automatic,
+  // Newton's iteration for sign(H); P from the null space of sign(H) + I (Roberts 1971, Byers
+  // 1987). About 10 inversions of the 2n×2n H instead of an ordered Schur form: faster at the
+  // paper's size. Throws when the iteration fails, without saying which precondition is broken,
+  // or when its solution is not backward stable even after Newton refinement.
+  matrix_sign,
+  // Laub's method: the ordered real Schur form of the balanced H gives a basis [U1; U2] of its
+  // stable invariant subspace and P = U2 U1⁻¹ (the method of SLICOT SB02MD and MATLAB care).
+  schur,
+};
+
 struct CareResult {
   Eigen::MatrixXd P;                         // stabilizing solution, exactly symmetric
   Eigen::MatrixXd K;                         // R⁻¹ B' P: the optimal feedback is u = −K x
@@ -32,18 +49,20 @@ struct CareResult {
   // ‖A'P + PA − PBR⁻¹B'P + Q‖_F / max(1, ‖Q‖_F). On ill-conditioned equations the terms of
   // the sum can be far larger than Q, and so is this number even for a backward-stable solve.
   double relative_residual;
-  // Newton steps taken. solve_care: Newton refinement steps after the Schur solution, 0 unless
+  // Newton steps taken. solve_care: Newton refinement steps after the direct solution, 0 unless
   // that solution was not backward stable (see riccati.cpp).
   int iterations;
+  // Inversions of the sign-function iteration that produced P; 0 when P came from the Schur
+  // form or from Newton–Kleinman.
+  int sign_iterations = 0;
 };
 
-// Laub's Schur method: the ordered real Schur form of the (scaled) Hamiltonian
-// H = [A, −G; −Q, −A'], G = B R⁻¹ B', gives a basis [U1; U2] of its stable invariant subspace
-// and P = U2 U1⁻¹.
+// The direct solver: no initial guess needed.
 CareResult solve_care(const Eigen::Ref<const Eigen::MatrixXd>& A,
                       const Eigen::Ref<const Eigen::MatrixXd>& B,
                       const Eigen::Ref<const Eigen::MatrixXd>& Q,
-                      const Eigen::Ref<const Eigen::MatrixXd>& R);
+                      const Eigen::Ref<const Eigen::MatrixXd>& R,
+                      CareMethod method = CareMethod::automatic);
 
 // Newton–Kleinman from the warm start P0, which must be stabilizing (A − G P0 Hurwitz): each
 // step solves the Lyapunov equation (A − G Pk)'X + X(A − G Pk) + Q + Pk G Pk = 0 for Pk+1 = X.
