@@ -2,9 +2,10 @@
 // the θ–D controller in a closed-loop run of scenario I (all disturbances, its seed), cycled in
 // their order, so that a warm-started SDRE sees realistic step-to-step changes and no controller
 // is timed on one cached state. θ–D runs with N = 1 … 4 terms and 1 (one-step lag) or 3 (exact Ω,
-// spec §7.6) fixed-point passes; SDRE cold (balanced Laub) and warm (Newton–Kleinman from the
-// last P) with the same passes; the LQRs and the example PID; and, as a reference for the Riccati
-// solver, the SDRE step with SLICOT's SB02MD in place of solve_care.
+// spec §7.6) fixed-point passes; SDRE cold (solve_care: the matrix sign function, Schur as
+// fallback) and warm (Newton–Kleinman from the last P) with the same passes; the LQRs and the
+// example PID; and, as a reference for the Riccati solver, the SDRE step with SLICOT's SB02MD in
+// place of solve_care.
 //
 // The fixed-point tolerance is 0 in every row, so that "3 passes" always means 3: the cost of the
 // variant, not of how fast one trajectory happens to converge.
@@ -166,14 +167,13 @@ void sdre_step(benchmark::State& state, thetad::SdreSettings::Mode mode, int pas
 // CARE solver: Laub's method, general scaling, G = B R⁻¹ Bᵀ formed per step as SB02MD needs it.
 void sdre_step_sb02md(benchmark::State& state) {
   const Recording& r = recording();
-  const int n = heli::kStateDim, n2 = 2 * n, ldwork = 6 * n + 64 * n2;
+  const int n = heli::kStateDim;
   const Eigen::MatrixXd Q = heli::paper_state_weights().asDiagonal();
   const Eigen::MatrixXd R = heli::paper_input_weights().asDiagonal();
   const Eigen::LLT<Eigen::MatrixXd> R_factor(R);
-  Eigen::MatrixXd F(n, n), B(n, heli::kInputDim), a(n, n), g(n, n), x(n, n), s(n2, n2), U(n2, n2);
-  Eigen::VectorXd wr(n2), wi(n2), dwork(ldwork), v(n), u(heli::kInputDim);
-  std::vector<int> iwork(n2), bwork(n2);
-  double rcond = 0.0;
+  thetad::bench::Sb02md sb02md(n);
+  Eigen::MatrixXd F(n, n), B(n, heli::kInputDim), g(n, n), x(n, n);
+  Eigen::VectorXd v(n), u(heli::kInputDim);
   int info = 0;
   std::size_t k = 0;
   for (auto _ : state) {
@@ -181,11 +181,7 @@ void sdre_step_sb02md(benchmark::State& state) {
     r.model.sdc(sample.state, sample.input, F, B);
     r.model.tracking_vector(sample.state, sample.reference, v);
     g.noalias() = B * R_factor.solve(B.transpose());
-    a = F;
-    x = Q;
-    sb02md_("C", "D", "U", "G", "S", &n, a.data(), &n, g.data(), &n, x.data(), &n, &rcond, wr.data(),
-            wi.data(), s.data(), &n2, U.data(), &n2, iwork.data(), dwork.data(), &ldwork, bwork.data(),
-            &info, 1, 1, 1, 1, 1);
+    info = sb02md.solve(F, g, Q, x);
     if (info != 0) break;
     u.noalias() = -R_factor.solve(B.transpose() * (x * v));
     benchmark::DoNotOptimize(u.data());

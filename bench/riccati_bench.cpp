@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <memory>
 #include <random>
 #include <stdexcept>
@@ -14,6 +15,7 @@
 
 #include <Eigen/Dense>
 
+#include "bench/care_problems.hpp"
 #include "bench/slicot.hpp"
 #include "core/lapack.hpp"
 #include "core/lyapunov.hpp"
@@ -26,9 +28,7 @@ using Eigen::MatrixXd;
 using MatrixRef = Eigen::Ref<const MatrixXd>;
 
 // One Riccati problem and everything derived from it that the timed loops must not pay for.
-struct Problem {
-  std::string name;
-  MatrixXd A, B, Q, R;
+struct Problem : thetad::bench::CareProblem {
   MatrixXd P;       // solve_care(A, B, Q, R)
   MatrixXd P_warm;  // the solution for A with every entry perturbed by 1e-3 (relative)
   MatrixXd Ac;      // A − BK: the constant coefficient of the θ–D Lyapunov equations
@@ -36,21 +36,7 @@ struct Problem {
   std::shared_ptr<const thetad::ConstantLyapunovSolver> lyapunov;
 };
 
-MatrixXd random_normal(Index rows, Index cols, std::mt19937_64& rng) {
-  std::normal_distribution<double> normal(0.0, 1.0);
-  MatrixXd M(rows, cols);
-  for (Index j = 0; j < cols; ++j)
-    for (Index i = 0; i < rows; ++i) M(i, j) = normal(rng);
-  return M;
-}
-
-// Diagonal weights 10^e, e uniform in [0, 7]: the paper's Q and R span the same seven decades.
-MatrixXd random_weights(Index n, std::mt19937_64& rng) {
-  std::uniform_real_distribution<double> exponent(0.0, 7.0);
-  Eigen::VectorXd w(n);
-  for (Index i = 0; i < n; ++i) w(i) = std::pow(10.0, exponent(rng));
-  return w.asDiagonal();
-}
+using thetad::bench::random_normal;
 
 MatrixXd symmetric_part(const MatrixRef& M) { return 0.5 * (M + M.transpose()); }
 
@@ -65,7 +51,9 @@ double lyapunov_residual(const Problem& p, const MatrixRef& X) {
   return (p.Ac.transpose() * X + X * p.Ac + p.W).norm() / p.W.norm();
 }
 
-void complete(Problem& p, std::mt19937_64& rng) {
+Problem complete(thetad::bench::CareProblem care_problem, std::mt19937_64& rng) {
+  Problem p;
+  static_cast<thetad::bench::CareProblem&>(p) = std::move(care_problem);
   const thetad::CareResult care = thetad::solve_care(p.A, p.B, p.Q, p.R);
   p.P = care.P;
   p.Ac = p.A - p.B * care.K;
@@ -74,54 +62,36 @@ void complete(Problem& p, std::mt19937_64& rng) {
   const MatrixXd E = random_normal(p.A.rows(), p.A.cols(), rng);
   p.W = symmetric_part(-(p.P * E + E.transpose() * p.P));
   p.lyapunov = std::make_shared<const thetad::ConstantLyapunovSolver>(p.Ac);
+  return p;
 }
 
-// A random, generically controllable pair with some unstable modes.
+// Seeded std::mt19937_64 (seed 1000n + m).
 Problem random_problem(Index n, Index m) {
   std::mt19937_64 rng(1000 * static_cast<std::uint64_t>(n) + static_cast<std::uint64_t>(m));
-  Problem p;
-  p.name = "n" + std::to_string(n) + "_m" + std::to_string(m);
-  p.A = random_normal(n, n, rng) / std::sqrt(static_cast<double>(n));
-  p.B = random_normal(n, m, rng);
-  p.Q = random_weights(n, rng);
-  p.R = random_weights(m, rng);
-  complete(p, rng);
-  return p;
+  // Appended piece by piece: "n" + std::to_string(n) + … draws a false -Wrestrict from GCC 12 at -O3.
+  std::string name = "n";
+  name += std::to_string(n);
+  name += "_m";
+  name += std::to_string(m);
+  return complete(thetad::bench::random_care_problem(std::move(name), n, m, rng), rng);
 }
 
-// The helicopter at rest (paper-spec §10.3: A0, g0) with the paper's weights (§7.2).
 Problem paper_problem() {
   std::mt19937_64 rng(2011);
-  Problem p;
-  p.name = "paper_n18_m5";
-  p.A = MatrixXd::Zero(18, 18);
-  const auto a = [&](int i, int j, double v) { p.A(i - 1, j - 1) = v; };
-  a(1, 4, 1); a(2, 5, 1); a(3, 6, 1); a(4, 8, -9.81); a(5, 7, 9.81); a(5, 18, 6.3246e-6);
-  a(6, 18, 9.84953); a(7, 10, 1); a(8, 11, 1); a(9, 12, 1); a(10, 14, 300);
-  a(10, 18, 2.30496e-5); a(11, 13, 158.824); a(12, 18, -36.6771); a(13, 11, -1);
-  a(13, 13, -10); a(14, 10, -1); a(14, 14, -10); a(15, 1, 1); a(16, 2, 1); a(17, 3, 1);
-  a(18, 18, -0.1);
-  p.B = MatrixXd::Zero(18, 5);
-  const auto g = [&](int i, int j, double v) { p.B(i - 1, j - 1) = v; };
-  g(5, 2, 5.4); g(6, 1, -0.121951); g(10, 2, 19.68); g(12, 2, -217.810); g(13, 4, 44.515);
-  g(14, 5, 44.515);
-  Eigen::VectorXd q(18);
-  q << 1e4, 2e4, 1e7, 100, 100, 1, 100, 100, 1e3, 200, 1, 200, 1e5, 1e5, 2e3, 2e3, 1e6, 0;
-  p.Q = q.asDiagonal();
-  p.R = Eigen::Vector<double, 5>(1, 200, 1e7, 1e5, 1e5).asDiagonal();
-  complete(p, rng);
-  return p;
+  return complete(thetad::bench::paper_care_problem(), rng);
 }
 
 // ---- Riccati ---------------------------------------------------------------------------------
 
+template <thetad::CareMethod method>
 void bm_solve_care(benchmark::State& state, const Problem& p) {
   thetad::CareResult result;
   for (auto _ : state) {
-    result = thetad::solve_care(p.A, p.B, p.Q, p.R);
+    result = thetad::solve_care(p.A, p.B, p.Q, p.R, method);
     benchmark::DoNotOptimize(result.P.data());
   }
   state.counters["residual"] = care_residual(p, result.P);
+  state.counters["sign_iterations"] = result.sign_iterations;
 }
 
 void bm_solve_care_newton(benchmark::State& state, const Problem& p) {
@@ -134,26 +104,16 @@ void bm_solve_care_newton(benchmark::State& state, const Problem& p) {
   state.counters["iterations"] = result.iterations;
 }
 
-// SB02MD with its workspace allocated once outside the loop (a generous LDWORK, not the
-// minimum 6N, so DGEES runs blocked). Inside the loop: what a caller holding (A, B, Q, R) must
-// do, i.e. form G = B R⁻¹ B' (Cholesky of R), copy A, G and Q into the Fortran arrays (SB02MD
-// overwrites Q with X) and call it. General scaling (SCAL = 'G'), stable eigenvalues first.
+// SB02MD with its workspace allocated once outside the loop. Inside the loop: what a caller
+// holding (A, B, Q, R) must do, i.e. form G = B R⁻¹ B' (Cholesky of R), copy A and Q into the
+// Fortran arrays (SB02MD overwrites Q with X) and call it.
 void bm_sb02md(benchmark::State& state, const Problem& p) {
-  const int n = static_cast<int>(p.A.rows());
-  const int n2 = 2 * n;
-  const int ldwork = 6 * n + 64 * n2;
-  MatrixXd a(n, n), g(n, n), x(n, n), s(n2, n2), u(n2, n2);
-  Eigen::VectorXd wr(n2), wi(n2), dwork(ldwork);
-  std::vector<int> iwork(n2), bwork(n2);
-  double rcond = 0.0;
+  thetad::bench::Sb02md sb02md(static_cast<int>(p.A.rows()));
+  MatrixXd g, x;
   int info = 0;
   for (auto _ : state) {
     g = p.B * p.R.llt().solve(p.B.transpose());
-    a = p.A;
-    x = p.Q;
-    sb02md_("C", "D", "U", "G", "S", &n, a.data(), &n, g.data(), &n, x.data(), &n, &rcond,
-            wr.data(), wi.data(), s.data(), &n2, u.data(), &n2, iwork.data(), dwork.data(),
-            &ldwork, bwork.data(), &info, 1, 1, 1, 1, 1);
+    info = sb02md.solve(p.A, g, p.Q, x);
     benchmark::DoNotOptimize(x.data());
   }
   if (info != 0) {
@@ -161,7 +121,7 @@ void bm_sb02md(benchmark::State& state, const Problem& p) {
     return;
   }
   state.counters["residual"] = care_residual(p, x);
-  state.counters["rcond"] = rcond;
+  state.counters["rcond"] = sb02md.rcond();
 }
 
 // ---- Lyapunov: the θ–D equation Ac'X + XAc + W = 0 with constant Ac ------------------------
@@ -273,7 +233,8 @@ int main(int argc, char** argv) {
 
   using Function = void (*)(benchmark::State&, const Problem&);
   const std::pair<const char*, Function> every_size[] = {
-      {"solve_care", bm_solve_care},
+      {"solve_care", bm_solve_care<thetad::CareMethod::automatic>},
+      {"solve_care_schur", bm_solve_care<thetad::CareMethod::schur>},
       {"solve_care_newton_warm", bm_solve_care_newton},
       {"sb02md", bm_sb02md},
       {"constant_lyapunov_solve", bm_constant_lyapunov},

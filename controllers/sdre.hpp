@@ -28,7 +28,7 @@ namespace thetad {
 
 struct SdreSettings {
   enum class Mode {
-    cold,  // solve_care (balanced Laub–Schur) at every pass
+    cold,  // solve_care (matrix sign function, Laub–Schur fallback) at every pass
     warm,  // Newton–Kleinman from the last P (solve_care_newton), solve_care when that fails
   };
   Mode mode = Mode::warm;

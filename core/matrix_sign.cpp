@@ -1,10 +1,3 @@
-// With -march=native on AVX-512 machines, GCC 12 flags _mm256_undefined_pd inside Eigen's GEMM
-// packing (ptranspose), which the triangular solves of PartialPivLU::inverse reach: a false
-// positive in the compiler's own intrinsics header, silenced for this file only.
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#endif
-
 #include "core/matrix_sign.hpp"
 
 #include <cmath>

@@ -162,7 +162,7 @@ struct Candidate {
   MatrixXd P;
   MatrixXd WP;
   MatrixXd Res;
-  double eta;  // normwise backward error, see backward_error()
+  double eta;  // normwise backward error, see evaluate()
 };
 
 // η = ‖Res‖_F / (‖Q‖_F + 2‖A‖_F‖P‖_F + ‖G‖_F‖P‖_F²): the residual against the size of the terms
@@ -242,7 +242,7 @@ ScaledHamiltonian balanced(const MatrixXd& H) {
 // For the sign function, one scalar that gives G and Q the same 1-norm, as SB02MD's SCAL = 'G'
 // (D = diag(I, sI) keeps H Hamiltonian). Measured against 40-digit reference solutions (see
 // docs/performance.md): with it the sign function's forward error on the paper problem is
-// 1.6e-15 and on random paper-scaled problems on a par with SB02MD; with the Schur method's
+// ~1e-15 and on random paper-scaled problems on a par with SB02MD; with the Schur method's
 // balancing instead it was up to 20× worse than SB02MD on the random problems.
 ScaledHamiltonian equilibrated(const MatrixXd& H) {
   const Index n = H.rows() / 2;
@@ -253,8 +253,8 @@ ScaledHamiltonian equilibrated(const MatrixXd& H) {
   return scaled(H, std::move(d));
 }
 
-// Scaled Newton needs about 10 inversions on the paper's problem and 11 on random ones; 40 is
-// reached only near the imaginary axis, where the Schur method is the one to trust.
+// Scaled Newton needs 8 inversions on the paper's problem and 9–13 on random ones of its size;
+// 40 is reached only near the imaginary axis, where the Schur method is the one to trust.
 constexpr int kSignIterations = 40;
 
 // The stable invariant subspace [I; P] of H is the null space of sign(H) + I:

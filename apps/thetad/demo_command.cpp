@@ -45,8 +45,8 @@ int run_demo(const std::filesystem::path& out) {
   const double slowest = care.closed_loop_eigenvalues.real().maxCoeff();
   const double fastest = care.closed_loop_eigenvalues.real().minCoeff();
   const Eigen::VectorXd feed_forward = -care.K.col(kS);
-  std::printf("  solve_care (Laub, balanced): relative residual %.2e, %.0f us\n", care.relative_residual,
-              care_seconds * 1e6);
+  std::printf("  solve_care (%s): relative residual %.2e, %.0f us\n",
+              care.sign_iterations > 0 ? "matrix sign function" : "Laub-Schur", care.relative_residual, care_seconds * 1e6);
   std::printf("  closed-loop eigenvalues: real parts in [%.4f, %.4f]\n", fastest, slowest);
   std::printf("  bias feed-forward -K(:, s): T_mr %.4f N (m g = %.3f N), d_ped %.5f, d_lat %.5f rad\n",
               feed_forward(kTmr), u0(kTmr), feed_forward(kPed), feed_forward(kLat));

@@ -291,7 +291,12 @@ RunResult simulate(ControlLaw& law, const ReferenceTrajectory& reference, const 
     }
 
     const Eigen::Vector3d error = x.segment<3>(kXp) - position_command;
-    v_track << error, x.segment<11>(kU), true_error_integral.value, 1.0;  // Eq. 36 on the true state
+    // Eq. 36 on the true state. Fixed-size pieces: a comma initializer taking the Vector3d would
+    // instantiate an 8-wide packet copy that GCC 12 flags (-Warray-bounds) under -march=native.
+    v_track.segment<3>(kXp) = error;
+    v_track.segment<11>(kU) = x.segment<11>(kU);
+    v_track.segment<3>(kXi) = true_error_integral.value;
+    v_track(kS) = 1.0;
     summary.cost += 0.5 * (v_track.cwiseAbs2().dot(state_weights) + command.cwiseAbs2().dot(input_weights)) * period;
     error_square_sum += error.cwiseAbs2();
     summary.max_tracking_error = summary.max_tracking_error.cwiseMax(error.cwiseAbs());

@@ -1,0 +1,167 @@
+// Forward error of the CARE solvers against 40-digit reference solutions: thetad's automatic,
+// matrix-sign and Schur methods and SLICOT SB02MD, on the paper's problem and on random n = 18,
+// m = 5 problems with the paper's weight spread (the first is riccati_bench's n18_m5).
+//
+//   care_accuracy write DIR [COUNT]        the problems, DIR/NAME.txt (COUNT random ones, default 12)
+//   /usr/bin/python3 scripts/care_reference.py DIR    their reference solutions, DIR/NAME.ref
+//   care_accuracy compare DIR               the table in docs/performance.md
+//
+// The residual alone cannot rank solvers on these problems: the exact solution rounded to double
+// precision already has a relative residual of 1e-10 … 1e-7 (the column "rounded"), because the
+// terms of the equation are 1e7 times larger than Q and cancel.
+
+#include <algorithm>
+#include <cstdint>
+#include <cstdlib>
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "bench/care_problems.hpp"
+#include "bench/slicot.hpp"
+#include "core/atomic_file.hpp"
+#include "core/error.hpp"
+#include "core/riccati.hpp"
+
+namespace {
+
+using Eigen::MatrixXd;
+namespace fs = std::filesystem;
+using thetad::bench::CareProblem;
+
+std::string matrix_block(const char* name, const MatrixXd& M) {
+  std::ostringstream out;
+  out << name << ' ' << M.rows() << ' ' << M.cols() << '\n';
+  char number[32];
+  for (Eigen::Index i = 0; i < M.rows(); ++i) {
+    for (Eigen::Index j = 0; j < M.cols(); ++j) {
+      std::snprintf(number, sizeof number, "%.17g", M(i, j));
+      out << (j ? " " : "") << number;
+    }
+    out << '\n';
+  }
+  return out.str();
+}
+
+// Blocks "NAME ROWS COLS" followed by ROWS lines of COLS numbers; '#' lines are comments.
+std::map<std::string, MatrixXd> read_matrices(const fs::path& path) {
+  std::ifstream in(path);
+  if (!in) throw thetad::Error(path.string() + ": cannot open");
+  std::map<std::string, MatrixXd> matrices;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream header(line);
+    std::string name;
+    Eigen::Index rows = 0, cols = 0;
+    if (!(header >> name >> rows >> cols) || rows <= 0 || cols <= 0)
+      throw thetad::Error(path.string() + ": expected 'NAME ROWS COLS', got '" + line + "'");
+    MatrixXd M(rows, cols);
+    for (Eigen::Index i = 0; i < rows; ++i)
+      for (Eigen::Index j = 0; j < cols; ++j) {
+        std::string value;  // strtod: the references carry 25 digits
+        if (!(in >> value)) throw thetad::Error(path.string() + ": matrix " + name + " is cut short");
+        M(i, j) = std::strtod(value.c_str(), nullptr);
+      }
+    matrices[name] = M;
+  }
+  return matrices;
+}
+
+const MatrixXd& field(const std::map<std::string, MatrixXd>& matrices, const std::string& name, const fs::path& path) {
+  const auto it = matrices.find(name);
+  if (it == matrices.end()) throw thetad::Error(path.string() + ": no matrix " + name);
+  return it->second;
+}
+
+void write(const fs::path& dir, int count) {
+  std::vector<CareProblem> problems{thetad::bench::paper_care_problem()};
+  for (int k = 0; k < count; ++k) {
+    // Seed 1000n + m for k = 0, as riccati_bench's n18_m5.
+    std::mt19937_64 rng(18005 + 7919 * static_cast<std::uint64_t>(k));
+    problems.push_back(thetad::bench::random_care_problem("n18_m5_" + std::to_string(k), 18, 5, rng));
+  }
+  for (const CareProblem& p : problems)
+    thetad::write_file_atomically(dir / (p.name + ".txt"), "# " + p.name + ", written by care_accuracy\n" +
+                                                               matrix_block("A", p.A) + matrix_block("B", p.B) +
+                                                               matrix_block("Q", p.Q) + matrix_block("R", p.R));
+  std::printf("%zu problems in %s\n", problems.size(), dir.c_str());
+}
+
+void compare(const fs::path& dir) {
+  std::vector<fs::path> files;
+  for (const auto& entry : fs::directory_iterator(dir))
+    if (entry.path().extension() == ".txt") files.push_back(entry.path());
+  std::sort(files.begin(), files.end());
+  if (files.empty()) throw thetad::Error(dir.string() + ": no problems (run care_accuracy write first)");
+
+  std::printf("relative forward error ‖P − P_ref‖_F/‖P_ref‖_F, and relative residual ‖Res‖_F/max(1, ‖Q‖_F)\n");
+  std::printf("%-16s | %-9s %-9s %-9s %-9s | %-9s %-9s %-9s %-9s %-9s | %s\n", "problem", "automatic", "sign",
+              "schur", "SB02MD", "automatic", "sign", "schur", "SB02MD", "rounded", "sign it.");
+  for (const fs::path& path : files) {
+    const auto problem = read_matrices(path);
+    fs::path ref_path = path;
+    ref_path.replace_extension(".ref");
+    const MatrixXd& A = field(problem, "A", path);
+    const MatrixXd& B = field(problem, "B", path);
+    const MatrixXd& Q = field(problem, "Q", path);
+    const MatrixXd& R = field(problem, "R", path);
+    const MatrixXd P_ref = field(read_matrices(ref_path), "P", ref_path);
+    MatrixXd G = B * R.llt().solve(B.transpose());
+    const auto forward = [&](const MatrixXd& P) { return (P - P_ref).norm() / P_ref.norm(); };
+    const auto residual = [&](const MatrixXd& P) {
+      return (A.transpose() * P + P * A - P * G * P + Q).norm() / std::max(1.0, Q.norm());
+    };
+    const thetad::CareResult automatic = thetad::solve_care(A, B, Q, R);
+    const MatrixXd sign = thetad::solve_care(A, B, Q, R, thetad::CareMethod::matrix_sign).P;
+    const MatrixXd schur = thetad::solve_care(A, B, Q, R, thetad::CareMethod::schur).P;
+    thetad::bench::Sb02md sb02md(static_cast<int>(A.rows()));
+    MatrixXd slicot;
+    if (const int info = sb02md.solve(A, G, Q, slicot); info != 0)
+      throw thetad::Error(path.string() + ": SB02MD info " + std::to_string(info));
+    G = B * R.llt().solve(B.transpose());  // SB02MD overwrote it
+    std::printf("%-16s | %-9.1e %-9.1e %-9.1e %-9.1e | %-9.1e %-9.1e %-9.1e %-9.1e %-9.1e | %d\n",
+                path.stem().c_str(), forward(automatic.P), forward(sign), forward(schur), forward(slicot),
+                residual(automatic.P), residual(sign), residual(schur), residual(slicot), residual(P_ref),
+                automatic.sign_iterations);
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::string usage = "usage: care_accuracy write DIR [COUNT] | care_accuracy compare DIR";
+  try {
+    const std::vector<std::string> args(argv + 1, argv + argc);
+    if (args.size() >= 2 && args.size() <= 3 && args[0] == "write") {
+      int count = 12;
+      if (args.size() == 3) {
+        std::size_t used = 0;
+        try {
+          count = std::stoi(args[2], &used);
+        } catch (const std::exception&) {
+          used = 0;
+        }
+        if (used != args[2].size() || count < 0) throw thetad::Error("COUNT must be an integer ≥ 0, got '" + args[2] + "'");
+      }
+      write(args[1], count);
+    } else if (args.size() == 2 && args[0] == "compare") {
+      compare(args[1]);
+    } else {
+      std::fprintf(stderr, "%s\n", usage.c_str());
+      return 2;
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "care_accuracy: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,65 @@
+#pragma once
+
+// The Riccati problems shared by riccati_bench (speed) and care_accuracy (forward error against
+// 40-digit references): the paper's own, and random ones with the paper's weight spread.
+
+#include <cmath>
+#include <random>
+#include <string>
+
+#include <Eigen/Dense>
+
+namespace thetad::bench {
+
+struct CareProblem {
+  std::string name;
+  Eigen::MatrixXd A, B, Q, R;
+};
+
+inline Eigen::MatrixXd random_normal(Eigen::Index rows, Eigen::Index cols, std::mt19937_64& rng) {
+  std::normal_distribution<double> normal(0.0, 1.0);
+  Eigen::MatrixXd M(rows, cols);
+  for (Eigen::Index j = 0; j < cols; ++j)
+    for (Eigen::Index i = 0; i < rows; ++i) M(i, j) = normal(rng);
+  return M;
+}
+
+// Diagonal weights 10^e, e uniform in [0, 7]: the paper's Q and R span the same seven decades.
+inline Eigen::MatrixXd random_weights(Eigen::Index n, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> exponent(0.0, 7.0);
+  Eigen::VectorXd w(n);
+  for (Eigen::Index i = 0; i < n; ++i) w(i) = std::pow(10.0, exponent(rng));
+  return w.asDiagonal();
+}
+
+// A with N(0, 1/n) entries (some unstable modes), B with N(0, 1) entries: a random, generically
+// controllable pair. Draws from rng in the order A, B, Q, R.
+inline CareProblem random_care_problem(std::string name, Eigen::Index n, Eigen::Index m, std::mt19937_64& rng) {
+  CareProblem p{std::move(name), {}, {}, {}, {}};
+  p.A = random_normal(n, n, rng) / std::sqrt(static_cast<double>(n));
+  p.B = random_normal(n, m, rng);
+  p.Q = random_weights(n, rng);
+  p.R = random_weights(m, rng);
+  return p;
+}
+
+// The helicopter at rest (paper-spec §10.3: A0, g0) with the paper's weights (§7.2).
+inline CareProblem paper_care_problem() {
+  CareProblem p{"paper_n18_m5", Eigen::MatrixXd::Zero(18, 18), Eigen::MatrixXd::Zero(18, 5), {}, {}};
+  const auto a = [&](int i, int j, double v) { p.A(i - 1, j - 1) = v; };
+  a(1, 4, 1); a(2, 5, 1); a(3, 6, 1); a(4, 8, -9.81); a(5, 7, 9.81); a(5, 18, 6.3246e-6);
+  a(6, 18, 9.84953); a(7, 10, 1); a(8, 11, 1); a(9, 12, 1); a(10, 14, 300);
+  a(10, 18, 2.30496e-5); a(11, 13, 158.824); a(12, 18, -36.6771); a(13, 11, -1);
+  a(13, 13, -10); a(14, 10, -1); a(14, 14, -10); a(15, 1, 1); a(16, 2, 1); a(17, 3, 1);
+  a(18, 18, -0.1);
+  const auto g = [&](int i, int j, double v) { p.B(i - 1, j - 1) = v; };
+  g(5, 2, 5.4); g(6, 1, -0.121951); g(10, 2, 19.68); g(12, 2, -217.810); g(13, 4, 44.515);
+  g(14, 5, 44.515);
+  Eigen::VectorXd q(18);
+  q << 1e4, 2e4, 1e7, 100, 100, 1, 100, 100, 1e3, 200, 1, 200, 1e5, 1e5, 2e3, 2e3, 1e6, 0;
+  p.Q = q.asDiagonal();
+  p.R = Eigen::Vector<double, 5>(1, 200, 1e7, 1e5, 1e5).asDiagonal();
+  return p;
+}
+
+}  // namespace thetad::bench
