@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
+#include "core/helicopter/paper_weights.hpp"
 #include "core/helicopter/state.hpp"
 #include "tests/heap_counter.hpp"
 
@@ -333,6 +334,26 @@ TEST_F(SimulatorFiles, SummaryFieldsArePresentAndAgreeWithTheCsv) {
     EXPECT_EQ(json["tracking_error_m"]["max"][i].get<double>(), max_error[i]);
   }
   EXPECT_NEAR(json["control_effort"]["rms"]["T_mr_N"].get<double>(), std::sqrt(command_square_sum[0] / n), 1e-9);
+
+  // J of Eq. 32 from the logged true state and command: V_track of Eq. 36 with the true position
+  // error and its integral (rectangle rule, before the sample's own error is added).
+  const Eigen::VectorXd q = paper_state_weights();
+  const Eigen::VectorXd r = paper_input_weights();
+  Eigen::Vector3d error_integral = Eigen::Vector3d::Zero();
+  double cost = 0.0;
+  for (const auto& row : rows) {
+    Eigen::VectorXd v(kStateDim);
+    for (int i = 0; i < kStateDim; ++i) v[i] = row[column(log_schema()[4 + i].header())];
+    const Eigen::Vector3d error = v.segment<3>(kXp) - Eigen::Vector3d(row[1], row[2], row[3]);
+    v.segment<3>(kXp) = error;
+    v.segment<3>(kXi) = error_integral;
+    v[kS] = 1.0;
+    Eigen::VectorXd u(kInputDim);
+    for (int j = 0; j < kInputDim; ++j) u[j] = row[column("cmd_T_mr_N") + j];
+    cost += 0.5 * (v.cwiseAbs2().dot(q) + u.cwiseAbs2().dot(r)) * settings.controller_period();
+    error_integral += error * settings.controller_period();
+  }
+  EXPECT_NEAR(json["cost"]["J"].get<double>(), cost, 1e-9 * cost);
 }
 
 TEST(Simulator, LogsEveryKthControllerSample) {
