@@ -113,6 +113,41 @@ TEST_F(Cli, ABadSettingsFileNamesFileLineAndFieldAndWritesNothing) {
   EXPECT_FALSE(fs::exists(dir_ / "out"));
 }
 
+TEST_F(Cli, DesignLqrWritesATableThatTheScheduledControllerFlies) {
+  write(dir_ / "grid.yaml", "speeds: [0, 2]\ncourses_deg: [0]\nclimb_rates: [0]\n");
+  Output output = thetad("design-lqr --grid " + path("grid.yaml") + " --out " + path("table.json"));
+  ASSERT_EQ(output.status, 0) << output.err;
+  EXPECT_THAT(output.out, HasSubstr("2 grid points (2 speeds x 1 courses x 1 climb rates), 0 with the governor"));
+  // CI is set: one plain progress line per point, no terminal control codes.
+  EXPECT_THAT(output.err, HasSubstr("[1/2] speed  0.00 m/s"));
+  EXPECT_THAT(output.err, HasSubstr("[2/2] speed  2.00 m/s"));
+  EXPECT_THAT(output.err, Not(HasSubstr("\033")));
+  const auto table = nlohmann::json::parse(read(dir_ / "table.json"));
+  EXPECT_EQ(table["grid"]["speeds"], nlohmann::json::array({0.0, 2.0}));
+  EXPECT_EQ(table["points"].size(), 2u);
+
+  write(dir_ / "settings.yaml", "lqr-scheduled:\n  table: " + path("table.json") + "\n");
+  output = thetad("run --scenario " + path("hover.yaml") + " --controller lqr-scheduled --settings " +
+                  path("settings.yaml") + " --ideal --out " + path("out"));
+  ASSERT_EQ(output.status, 0) << output.err;
+  EXPECT_THAT(output.out, HasSubstr("completed"));
+}
+
+TEST_F(Cli, DesignLqrRejectsABadGridWithFileAndFieldAndWritesNothing) {
+  write(dir_ / "grid.yaml", "speeds: [2, 0]\ncourses_deg: [0]\nclimb_rates: [0]\n");
+  Output output = thetad("design-lqr --grid " + path("grid.yaml") + " --out " + path("table.json"));
+  EXPECT_NE(output.status, 0);
+  EXPECT_THAT(output.err, HasSubstr(path("grid.yaml") + ":1:"));
+  EXPECT_THAT(output.err, HasSubstr("field 'speeds'"));
+  EXPECT_FALSE(fs::exists(dir_ / "table.json"));
+
+  write(dir_ / "grid.yaml", "speeds: [0]\nheadings: [0]\n");
+  output = thetad("design-lqr --grid " + path("grid.yaml") + " --out " + path("table.json"));
+  EXPECT_NE(output.status, 0);
+  EXPECT_THAT(output.err, HasSubstr("field 'headings'"));
+  EXPECT_FALSE(fs::exists(dir_ / "table.json"));
+}
+
 TEST_F(Cli, BadArgumentsAreOneLine) {
   Output output = thetad("compare --scenario " + path("hover.yaml") + " --controllers lqr,nonesuch --out " + path("out"));
   EXPECT_NE(output.status, 0);
