@@ -3,6 +3,8 @@
 // m = 5 problems with the paper's weight spread (the first is riccati_bench's n18_m5).
 //
 //   care_accuracy write DIR [COUNT]        the problems, DIR/NAME.txt (COUNT random ones, default 12)
+//   care_accuracy write-ill-r DIR [COUNT]  instead: n = 6, m = 3 problems with κ(R) in 1e7 … 1e10
+//                                          (as CAREX 2.2), default 16
 //   /usr/bin/python3 scripts/care_reference.py DIR    their reference solutions, DIR/NAME.ref
 //   care_accuracy compare DIR               the table in docs/performance.md
 //
@@ -82,13 +84,26 @@ const MatrixXd& field(const std::map<std::string, MatrixXd>& matrices, const std
   return it->second;
 }
 
-void write(const fs::path& dir, int count) {
+std::vector<CareProblem> paper_sized_problems(int count) {
   std::vector<CareProblem> problems{thetad::bench::paper_care_problem()};
   for (int k = 0; k < count; ++k) {
     // Seed 1000n + m for k = 0, as riccati_bench's n18_m5.
     std::mt19937_64 rng(18005 + 7919 * static_cast<std::uint64_t>(k));
     problems.push_back(thetad::bench::random_care_problem("n18_m5_" + std::to_string(k), 18, 5, rng));
   }
+  return problems;
+}
+
+std::vector<CareProblem> ill_conditioned_r_problems(int count) {
+  std::vector<CareProblem> problems;
+  for (int k = 0; k < count; ++k) {
+    std::mt19937_64 rng(6003 + 7919 * static_cast<std::uint64_t>(k));
+    problems.push_back(thetad::bench::ill_conditioned_r_problem("ill_r_" + std::to_string(k), 6, 3, 7.0, 10.0, rng));
+  }
+  return problems;
+}
+
+void write(const fs::path& dir, const std::vector<CareProblem>& problems) {
   for (const CareProblem& p : problems)
     thetad::write_file_atomically(dir / (p.name + ".txt"), "# " + p.name + ", written by care_accuracy\n" +
                                                                matrix_block("A", p.A) + matrix_block("B", p.B) +
@@ -138,11 +153,12 @@ void compare(const fs::path& dir) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const std::string usage = "usage: care_accuracy write DIR [COUNT] | care_accuracy compare DIR";
+  const std::string usage = "usage: care_accuracy write|write-ill-r DIR [COUNT] | care_accuracy compare DIR";
   try {
     const std::vector<std::string> args(argv + 1, argv + argc);
-    if (args.size() >= 2 && args.size() <= 3 && args[0] == "write") {
-      int count = 12;
+    if (args.size() >= 2 && args.size() <= 3 && (args[0] == "write" || args[0] == "write-ill-r")) {
+      const bool ill_r = args[0] == "write-ill-r";
+      int count = ill_r ? 16 : 12;
       if (args.size() == 3) {
         std::size_t used = 0;
         try {
@@ -152,7 +168,7 @@ int main(int argc, char** argv) {
         }
         if (used != args[2].size() || count < 0) throw thetad::Error("COUNT must be an integer ≥ 0, got '" + args[2] + "'");
       }
-      write(args[1], count);
+      write(args[1], ill_r ? ill_conditioned_r_problems(count) : paper_sized_problems(count));
     } else if (args.size() == 2 && args[0] == "compare") {
       compare(args[1]);
     } else {

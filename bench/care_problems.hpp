@@ -43,6 +43,27 @@ inline CareProblem random_care_problem(std::string name, Eigen::Index n, Eigen::
   return p;
 }
 
+// A problem whose R is nearly singular, as CAREX 2.2: R = U diag(1, 10^−a, 10^−b) U' … with U a
+// random rotation, a uniform in [0, 1] and κ(R) = 10^b, b uniform in [log10_kappa_low,
+// log10_kappa_high]; A and B as above, Q = C'C with a random square C.
+inline CareProblem ill_conditioned_r_problem(std::string name, Eigen::Index n, Eigen::Index m, double log10_kappa_low,
+                                             double log10_kappa_high, std::mt19937_64& rng) {
+  CareProblem p{std::move(name), {}, {}, {}, {}};
+  p.A = random_normal(n, n, rng) / std::sqrt(static_cast<double>(n));
+  p.B = random_normal(n, m, rng);
+  const Eigen::MatrixXd C = random_normal(n, n, rng);
+  p.Q = C.transpose() * C;
+  const Eigen::MatrixXd U = random_normal(m, m, rng).householderQr().householderQ();
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  Eigen::VectorXd d(m);
+  d(0) = 1.0;
+  for (Eigen::Index i = 1; i + 1 < m; ++i) d(i) = std::pow(10.0, -unit(rng));
+  d(m - 1) = std::pow(10.0, -(log10_kappa_low + (log10_kappa_high - log10_kappa_low) * unit(rng)));
+  p.R = U * d.asDiagonal() * U.transpose();
+  p.R = 0.5 * (p.R + p.R.transpose()).eval();
+  return p;
+}
+
 // The helicopter at rest (paper-spec §10.3: A0, g0) with the paper's weights (§7.2).
 inline CareProblem paper_care_problem() {
   CareProblem p{"paper_n18_m5", Eigen::MatrixXd::Zero(18, 18), Eigen::MatrixXd::Zero(18, 5), {}, {}};

@@ -241,7 +241,8 @@ const std::map<std::string, CarexExpectation> kCarex = {
     {"carex_2_2", {1e-10, 5e-8,
                    "R nearly singular: κ(R)·u = 4.4e-8, and G = BR⁻¹B' formed from it is already 1.0e-8 off "
                    "(against 50 digits); the scipy P, from the extended pencil without R⁻¹, is within 4.5e-13 "
-                   "of a 60-digit solution. Measured: Schur 8.8e-9, SB02MD 8.7e-9, sign 2.8e-8"}},
+                   "of a 60-digit solution. Measured: Schur 8.8e-9, SB02MD 8.7e-9, sign 2.8e-8; on random "
+                   "problems with such R neither method is the more accurate (docs/performance.md)"}},
     {"carex_2_3", {1e-13, 1e-8, "ill conditioned for large eps"}},
     {"carex_2_4", {1e-13, 1e-8, "ill-conditioned Hamiltonian (eps = 1e-7)"}},
     {"carex_2_6", {1e-12, 1e-8, "badly scaled Hamiltonian, scipy is off by 2e-3 here: compared to X_exact"}},
