@@ -200,6 +200,18 @@ std::string trimmed(std::string text) {
   return text;
 }
 
+// The script installed beside the program (bin/../share/thetad) when there is one: an installed
+// thetad must not depend on the source tree it was built from.
+fs::path default_plot_script() {
+  std::error_code error;
+  const fs::path program = fs::read_symlink("/proc/self/exe", error);
+  if (!error) {
+    const fs::path installed = (program.parent_path() / THETAD_INSTALLED_PLOT_SCRIPT).lexically_normal();
+    if (fs::is_regular_file(installed, error)) return installed;
+  }
+  return THETAD_PLOT_SCRIPT;
+}
+
 }  // namespace
 
 CLI::App* add_plot_command(CLI::App& app, PlotArguments& arguments) {
@@ -213,7 +225,7 @@ CLI::App* add_plot_command(CLI::App& app, PlotArguments& arguments) {
       ->check(CLI::IsMember({"png", "svg", "pdf"}))
       ->capture_default_str();
   plot->add_option("--dpi", arguments.dpi, "Resolution of raster formats")->check(CLI::Range(30, 600))->capture_default_str();
-  arguments.script = THETAD_PLOT_SCRIPT;
+  arguments.script = default_plot_script();
   plot->add_option("--script", arguments.script, "The plotting script")->capture_default_str();
   return plot;
 }
