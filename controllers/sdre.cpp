@@ -132,7 +132,7 @@ std::unique_ptr<Controller> make_sdre(const YAML::Node& node, const ControllerCo
   const Settings fields(node);
   fields.allow_only({"mode", "fixed_point_iterations", "Q", "R"});
   SdreSettings settings;
-  settings.mode = fields.choice("mode", "cold", {"cold", "warm"}) == "warm" ? SdreSettings::Mode::warm
+  settings.mode = fields.choice("mode", "warm", {"cold", "warm"}) == "warm" ? SdreSettings::Mode::warm
                                                                              : SdreSettings::Mode::cold;
   settings.fixed_point_iterations = fields.integer("fixed_point_iterations", settings.fixed_point_iterations, 1);
   settings.Q = fields.diagonal_weight("Q", heli::paper_state_weights(), Settings::Weight::positive_semidefinite);

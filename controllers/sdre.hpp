@@ -31,9 +31,7 @@ struct SdreSettings {
     cold,  // solve_care (matrix sign function, Laub–Schur fallback) at every pass
     warm,  // Newton–Kleinman from the last P (solve_care_newton), solve_care when that fails
   };
-  // Cold since solve_care uses the matrix sign function: 130 µs a step against warm's 173 µs
-  // (1 pass; 393 against 482 µs with 3), docs/performance.md.
-  Mode mode = Mode::cold;
+  Mode mode = Mode::warm;
   // Q n×n symmetric positive semi-definite, R m×m symmetric positive definite (Eq. 37).
   Eigen::MatrixXd Q;
   Eigen::MatrixXd R;

@@ -201,8 +201,7 @@ TEST(Sdre, RejectsSettingsThatDoNotFitTheModel) {
   EXPECT_THROW(SdreController(plant, settings), Error);
 }
 
-// CI-sized closed loop, in warm mode (the default cold one flies scenario I in closed_loop_test;
-// the two agree as tested above).
+// CI-sized closed loop (warm mode: the cheaper of the two, and equal to cold as tested above).
 // Measured (ideal, 1 kHz): from 1 m in x the error is below 0.2 m after 1 s and 0.1 m after 3 s
 // (the integral error of V_track must unwind: undershoot to −0.16 m).
 TEST(Sdre, ReturnsToHoverFromAOneMetreOffset) {
