@@ -33,7 +33,7 @@ enum class CareMethod {
   // solution is not backward stable: the speed of the first, the diagnostics of the second.
   automatic,
   // Newton's iteration for sign(H); P from the null space of sign(H) + I (Roberts 1971, Byers
-  // 1987). About 10 inversions of the 2n×2n H instead of an ordered Schur form: faster at the
+  // 1987). 8–13 inversions of the 2n×2n H instead of an ordered Schur form: faster at the
   // paper's size. Throws when the iteration fails, without saying which precondition is broken,
   // or when its solution is not backward stable even after Newton refinement.
   matrix_sign,
