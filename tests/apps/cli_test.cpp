@@ -1,6 +1,4 @@
 // Runs the built thetad program (THETAD_BINARY) the way a user does.
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -12,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "tests/apps/run_thetad.hpp"
+#include "tests/scratch_directory.hpp"
 #include <nlohmann/json.hpp>
 
 namespace {
@@ -28,21 +27,16 @@ void write(const fs::path& file, const std::string& text) { std::ofstream(file) 
 class Cli : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("thetad_cli_test_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
     // A 2 s hold on the ground: the shortest flight that exercises every step of a run.
     write(dir_ / "hover.yaml", "name: tiny\nduration: 2\nphases:\n  - name: hover\n    type: hold\n    time: [0, 2]\n");
   }
-  void TearDown() override { fs::remove_all(dir_); }
-
   // thetad with `arguments` (a shell command line tail), CI set so progress comes as plain lines.
   Output thetad(const std::string& arguments) const { return thetad::testing::run_thetad(dir_, arguments); }
 
   std::string path(const std::string& name) const { return (dir_ / name).string(); }
 
-  fs::path dir_;
+  thetad::testing::ScratchDirectory scratch_{"thetad_cli_test"};
+  const fs::path dir_ = scratch_.path();
 };
 
 TEST_F(Cli, ListShowsTheRegisteredControllers) {

@@ -1,10 +1,9 @@
 // thetad plot on the output of a short `thetad compare`, run as a user runs them (THETAD_BINARY).
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -13,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "tests/apps/run_thetad.hpp"
+#include "tests/scratch_directory.hpp"
 
 namespace {
 
@@ -46,15 +46,14 @@ class Plot : public ::testing::Test {
   // One short comparison for every test (the flights are the slow part): a 2 s climb to 0.5 m with
   // two cheap controllers.
   static void SetUpTestSuite() {
-    root_ = fs::temp_directory_path() / ("thetad_plot_test_" + std::to_string(::getpid()));
-    fs::remove_all(root_);
-    fs::create_directories(root_);
+    scratch_.emplace("thetad_plot_test");
+    root_ = scratch_->path();
     write(root_ / "climb.yaml",
           "name: climb\nduration: 2\nphases:\n  - name: climb\n    type: ramp\n    time: [0, 2]\n    to: [0, 0, 0.5]\n");
     compare_ = thetad(root_, "compare --scenario " + (root_ / "climb.yaml").string() +
                                  " --controllers lqr,example-pid --seed 1 --out " + (root_ / "runs").string());
   }
-  static void TearDownTestSuite() { fs::remove_all(root_); }
+  static void TearDownTestSuite() { scratch_.reset(); }
 
   void SetUp() override {
     ASSERT_EQ(compare_.status, 0) << compare_.err;
@@ -84,6 +83,7 @@ class Plot : public ::testing::Test {
     }
   }
 
+  static inline std::optional<thetad::testing::ScratchDirectory> scratch_;
   static inline fs::path root_;
   static inline Output compare_;
   fs::path dir_;

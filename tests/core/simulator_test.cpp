@@ -10,7 +10,6 @@
 #include <iterator>
 #include <sstream>
 #include <string>
-#include <unistd.h>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -20,6 +19,7 @@
 #include "core/helicopter/paper_weights.hpp"
 #include "core/helicopter/state.hpp"
 #include "tests/heap_counter.hpp"
+#include "tests/scratch_directory.hpp"
 
 
 namespace thetad::sim {
@@ -79,15 +79,6 @@ std::size_t column(const std::string& header) {
 
 class SimulatorFiles : public ::testing::Test {
  protected:
-  void SetUp() override {
-    directory_ = fs::temp_directory_path() /
-                 ("thetad_simulator_test_" + std::to_string(::getpid()) + "_" +
-                  ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(directory_);
-    fs::create_directories(directory_);
-  }
-  void TearDown() override { fs::remove_all(directory_); }
-
   std::vector<std::string> directory_entries() const {
     std::vector<std::string> names;
     for (const auto& entry : fs::directory_iterator(directory_)) names.push_back(entry.path().filename().string());
@@ -95,7 +86,8 @@ class SimulatorFiles : public ::testing::Test {
     return names;
   }
 
-  fs::path directory_;
+  thetad::testing::ScratchDirectory scratch_{"thetad_simulator_test"};
+  const fs::path directory_ = scratch_.path();
 };
 
 SimulationSettings short_paper_run(std::uint64_t seed) {

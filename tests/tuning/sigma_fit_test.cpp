@@ -4,7 +4,6 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
-#include <unistd.h>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -13,6 +12,7 @@
 #include "controllers/sdre.hpp"
 #include "core/error.hpp"
 #include "scenarios/scenario.hpp"
+#include "tests/scratch_directory.hpp"
 #include "tests/tuning/helicopter_theta_d.hpp"
 #include "tuning/record.hpp"
 #include "tuning/sigma_fit.hpp"
@@ -94,12 +94,6 @@ TEST(SigmaFit, TunedResidualOnARealRecordIsNoWorse) {
 
 class RecordFile : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("thetad_tuning_test_" + std::to_string(::getpid()));
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
   fs::path write(const std::string& name, const std::string& text) const {
     std::ofstream(dir_ / name) << text;
     return dir_ / name;
@@ -116,7 +110,8 @@ class RecordFile : public ::testing::Test {
 
   const std::string head_ = "# thetad tuning record v1: SDRE flight, sigma_max of P_SDRE at each kept sample\n"
                             "# scenario: tiny\nt_s,x_0,x_1,u_0,sigma_max_P\n";
-  fs::path dir_;
+  thetad::testing::ScratchDirectory scratch_{"thetad_tuning_test"};
+  const fs::path dir_ = scratch_.path();
 };
 
 TEST_F(RecordFile, RoundTripIsExact) {

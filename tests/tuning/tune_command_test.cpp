@@ -1,7 +1,5 @@
 // thetad tune as a user runs it: bad input fails with one line and writes nothing; a small tuning
 // writes a settings file that thetad run accepts, and a reused record gives the same fit.
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -14,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "tests/apps/run_thetad.hpp"
+#include "tests/scratch_directory.hpp"
 
 namespace {
 
@@ -27,23 +26,18 @@ using thetad::testing::Output;
 class TuneCommand : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("thetad_tune_test_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
     // Two seconds of a slow climb: the smallest flight with a trajectory to tune on.
     std::ofstream(dir_ / "climb.yaml") << "name: climb\nduration: 2\nphases:\n  - name: up\n    type: ramp\n"
                                           "    time: [0, 2]\n    to: [0, 0, 1]\n";
   }
-  void TearDown() override { fs::remove_all(dir_); }
-
   Output thetad(const std::string& arguments) const { return thetad::testing::run_thetad(dir_, arguments); }
   std::string path(const std::string& name) const { return (dir_ / name).string(); }
   std::string tune(const std::string& extra) const {
     return "tune --scenario " + path("climb.yaml") + " --ideal --out " + path("out") + " " + extra;
   }
 
-  fs::path dir_;
+  thetad::testing::ScratchDirectory scratch_{"thetad_tune_test"};
+  const fs::path dir_ = scratch_.path();
 };
 
 TEST_F(TuneCommand, BadInputFailsWithOneLineAndWritesNothing) {
