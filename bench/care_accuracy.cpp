@@ -126,16 +126,12 @@ void compare(const fs::path& dir) {
     const auto problem = read_matrices(path);
     fs::path ref_path = path;
     ref_path.replace_extension(".ref");
-    const MatrixXd& A = field(problem, "A", path);
-    const MatrixXd& B = field(problem, "B", path);
-    const MatrixXd& Q = field(problem, "Q", path);
-    const MatrixXd& R = field(problem, "R", path);
+    const CareProblem p{path.stem().string(), field(problem, "A", path), field(problem, "B", path),
+                        field(problem, "Q", path), field(problem, "R", path)};
+    const auto& [name, A, B, Q, R] = p;
     const MatrixXd P_ref = field(read_matrices(ref_path), "P", ref_path);
-    MatrixXd G = B * R.llt().solve(B.transpose());
     const auto forward = [&](const MatrixXd& P) { return (P - P_ref).norm() / P_ref.norm(); };
-    const auto residual = [&](const MatrixXd& P) {
-      return (A.transpose() * P + P * A - P * G * P + Q).norm() / std::max(1.0, Q.norm());
-    };
+    const auto residual = [&](const MatrixXd& P) { return thetad::bench::relative_residual(p, P); };
     // A method that refuses the equation (matrix_sign near the imaginary axis) shows "refused".
     std::vector<std::optional<MatrixXd>> solutions;
     int sign_iterations = 0;
@@ -149,10 +145,10 @@ void compare(const fs::path& dir) {
       }
     }
     thetad::bench::Sb02md sb02md(static_cast<int>(A.rows()));
+    MatrixXd G = B * R.llt().solve(B.transpose());  // SB02MD scales it in place
     MatrixXd slicot;
     const int info = sb02md.solve(A, G, Q, slicot);
     solutions.push_back(info == 0 ? std::optional<MatrixXd>(slicot) : std::nullopt);
-    G = B * R.llt().solve(B.transpose());  // SB02MD scaled it in place
 
     const auto cells = [&](const auto& measure) {
       std::string text;
@@ -163,7 +159,7 @@ void compare(const fs::path& dir) {
       }
       return text;
     };
-    std::printf("%-16s | %s| %s%-9.1e | %d\n", path.stem().c_str(), cells(forward).c_str(), cells(residual).c_str(),
+    std::printf("%-16s | %s| %s%-9.1e | %d\n", name.c_str(), cells(forward).c_str(), cells(residual).c_str(),
                 residual(P_ref), sign_iterations);
   }
 }

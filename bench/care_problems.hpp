@@ -3,6 +3,7 @@
 // The Riccati problems shared by riccati_bench (speed) and care_accuracy (forward error against
 // 40-digit references): the paper's own, and random ones with the paper's weight spread.
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <string>
@@ -62,6 +63,13 @@ inline CareProblem ill_conditioned_r_problem(std::string name, Eigen::Index n, E
   p.R = U * d.asDiagonal() * U.transpose();
   p.R = 0.5 * (p.R + p.R.transpose()).eval();
   return p;
+}
+
+// ‖A'P + PA − PGP + Q‖_F / max(1, ‖Q‖_F), the normalisation of CareResult::relative_residual,
+// computed the same way for every solver that a benchmark compares.
+inline double relative_residual(const CareProblem& p, const Eigen::MatrixXd& P) {
+  const Eigen::MatrixXd G = p.B * p.R.llt().solve(p.B.transpose());
+  return (p.A.transpose() * P + P * p.A - P * G * P + p.Q).norm() / std::max(1.0, p.Q.norm());
 }
 
 // The helicopter at rest (paper-spec §10.3: A0, g0) with the paper's weights (§7.2).

@@ -40,13 +40,6 @@ using thetad::bench::random_normal;
 
 MatrixXd symmetric_part(const MatrixRef& M) { return 0.5 * (M + M.transpose()); }
 
-// ‖A'P + PA − PGP + Q‖_F / max(1, ‖Q‖_F), the normalisation of CareResult::relative_residual,
-// computed here the same way for every solver.
-double care_residual(const Problem& p, const MatrixRef& P) {
-  const MatrixXd G = p.B * p.R.llt().solve(p.B.transpose());
-  return (p.A.transpose() * P + P * p.A - P * G * P + p.Q).norm() / std::max(1.0, p.Q.norm());
-}
-
 double lyapunov_residual(const Problem& p, const MatrixRef& X) {
   return (p.Ac.transpose() * X + X * p.Ac + p.W).norm() / p.W.norm();
 }
@@ -90,7 +83,7 @@ void bm_solve_care(benchmark::State& state, const Problem& p) {
     result = thetad::solve_care(p.A, p.B, p.Q, p.R, method);
     benchmark::DoNotOptimize(result.P.data());
   }
-  state.counters["residual"] = care_residual(p, result.P);
+  state.counters["residual"] = thetad::bench::relative_residual(p, result.P);
   state.counters["sign_iterations"] = result.sign_iterations;
 }
 
@@ -100,7 +93,7 @@ void bm_solve_care_newton(benchmark::State& state, const Problem& p) {
     result = thetad::solve_care_newton(p.A, p.B, p.Q, p.R, p.P_warm);
     benchmark::DoNotOptimize(result.P.data());
   }
-  state.counters["residual"] = care_residual(p, result.P);
+  state.counters["residual"] = thetad::bench::relative_residual(p, result.P);
   state.counters["iterations"] = result.iterations;
 }
 
@@ -120,7 +113,7 @@ void bm_sb02md(benchmark::State& state, const Problem& p) {
     state.SkipWithError(("SB02MD info " + std::to_string(info)).c_str());
     return;
   }
-  state.counters["residual"] = care_residual(p, x);
+  state.counters["residual"] = thetad::bench::relative_residual(p, x);
   state.counters["rcond"] = sb02md.rcond();
 }
 
