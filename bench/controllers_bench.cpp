@@ -43,17 +43,17 @@ constexpr double kRecordTo = 15.0;
 struct Sample {
   double t;
   Eigen::VectorXd state;  // measured (noisy) 18-state
-  thetad::sim::Reference reference;
+  thetad::Reference reference;
   Eigen::VectorXd input;  // what the recorded controller commanded
 };
 
 // Passes every call on to the controller it wraps and keeps the ones inside the window.
-class RecordingLaw final : public thetad::sim::ControlLaw {
+class RecordingLaw final : public thetad::ControlLaw {
  public:
   RecordingLaw(thetad::Controller& inner, std::vector<Sample>& samples) : inner_(inner), samples_(samples) {}
   std::string name() const override { return inner_.name(); }
   void reset(const Eigen::VectorXd& x0, double t0) override { inner_.reset(x0, t0); }
-  void control(double t, const Eigen::Ref<const Eigen::VectorXd>& measured, const thetad::sim::Reference& reference,
+  void control(double t, const Eigen::Ref<const Eigen::VectorXd>& measured, const thetad::Reference& reference,
                Eigen::Ref<Eigen::VectorXd> u) override {
     inner_.control(t, measured, reference, u);
     if (t >= kRecordFrom) samples_.push_back({t, measured, reference, u});

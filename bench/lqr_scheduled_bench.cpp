@@ -26,7 +26,7 @@ void BM_LqrScheduledControl(benchmark::State& state) {
   measured(0) += 0.1;
   const Eigen::Vector3d velocity(3.0 * std::cos(0.5), 3.0 * std::sin(0.5), -0.25);
   controller.reset(trim.state, 0.0);
-  thetad::sim::Reference reference;
+  thetad::Reference reference;
   reference.position = trim.state.segment<3>(0);
   Eigen::VectorXd u(thetad::heli::kInputDim);
   double t = 0.0;

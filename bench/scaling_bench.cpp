@@ -100,7 +100,7 @@ struct Fixture {
 
   void step() {
     t += 1e-3;
-    controller->control(t, path.states[k], thetad::sim::Reference{}, u);
+    controller->control(t, path.states[k], thetad::Reference{}, u);
     if (++k == path.states.size()) k = 0;
   }
 };

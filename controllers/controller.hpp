@@ -5,7 +5,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/sim/control_law.hpp"
+#include "core/control_law.hpp"
 
 namespace thetad {
 
@@ -16,7 +16,7 @@ namespace thetad {
 // The control step receives the measured 18-state (noisy; its integral entries hold the
 // integral of the measured position, s = 1) and the reference (commanded position and its
 // integral); the plant's tracking_vector() turns them into what the value function acts on (V_track, Eq. 36).
-class Controller : public sim::ControlLaw {
+class Controller : public ControlLaw {
  public:
   virtual std::unique_ptr<Controller> clone() const = 0;
 };

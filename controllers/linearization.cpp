@@ -32,7 +32,7 @@ Linearization linearize(const SdcPlant& plant, const Eigen::VectorXd& x, const E
 }
 
 OperatingPoint operating_point(const heli::Helicopter& model, const Trim& trim) {
-  sim::Reference reference;
+  Reference reference;
   reference.position = trim.state.segment<3>(heli::kXp);
   reference.integral = trim.state.segment<3>(heli::kXi);
   Eigen::VectorXd tracking(model.state_dim());

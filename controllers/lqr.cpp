@@ -42,7 +42,7 @@ void LqrController::reset(const Eigen::VectorXd& x0, double) {
 }
 
 void LqrController::control(double, const Eigen::Ref<const Eigen::VectorXd>& measured_state,
-                            const sim::Reference& reference, Eigen::Ref<Eigen::VectorXd> u) {
+                            const Reference& reference, Eigen::Ref<Eigen::VectorXd> u) {
   model_->tracking_vector(measured_state, reference, v_);
   v_.head(design_states_) -= point_.tracking.head(design_states_);
   u = point_.input;

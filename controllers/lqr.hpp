@@ -46,7 +46,7 @@ class LqrController final : public Controller {
 
   void reset(const Eigen::VectorXd& x0, double t0) override;
   // u = u* − K (V − V*). Allocates nothing.
-  void control(double t, const Eigen::Ref<const Eigen::VectorXd>& measured_state, const sim::Reference& reference,
+  void control(double t, const Eigen::Ref<const Eigen::VectorXd>& measured_state, const Reference& reference,
                Eigen::Ref<Eigen::VectorXd> u) override;
 
   const OperatingPoint& operating_point() const { return point_; }

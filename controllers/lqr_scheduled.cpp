@@ -542,7 +542,7 @@ void LqrScheduledController::schedule(double speed, double course, double climb_
 }
 
 void LqrScheduledController::control(double t, const Eigen::Ref<const Eigen::VectorXd>& measured_state,
-                                     const sim::Reference& reference, Eigen::Ref<Eigen::VectorXd> u) {
+                                     const Reference& reference, Eigen::Ref<Eigen::VectorXd> u) {
   // The commanded velocity: backward difference of the (noise-free) reference over the controller
   // period, through a first-order low pass (exact for a held input); zero at the first sample (the
   // scenarios start at rest). Not the measured velocity: V*'s velocity would then follow the

@@ -133,7 +133,7 @@ class LqrScheduledController final : public Controller {
   void reset(const Eigen::VectorXd& x0, double t0) override;
   // Schedules on the commanded velocity (backward difference of the reference between samples,
   // low-passed), then u = u* − K (V − V*). Allocates nothing.
-  void control(double t, const Eigen::Ref<const Eigen::VectorXd>& measured_state, const sim::Reference& reference,
+  void control(double t, const Eigen::Ref<const Eigen::VectorXd>& measured_state, const Reference& reference,
                Eigen::Ref<Eigen::VectorXd> u) override;
 
   // Blends the grid's trims and gains at a flight condition; the results are read back with

@@ -97,7 +97,7 @@ void SdreController::update_value_matrix(double t) {
 }
 
 void SdreController::control(double t, const Eigen::Ref<const Eigen::VectorXd>& measured_state,
-                             const sim::Reference& reference, Eigen::Ref<Eigen::VectorXd> u) {
+                             const Reference& reference, Eigen::Ref<Eigen::VectorXd> u) {
   model_->tracking_vector(measured_state, reference, v_);
   // Spec §7.6: start from the previously applied input; without input dependence one pass is exact.
   const int passes = model_->sdc_depends_on_input() ? settings_.fixed_point_iterations : 1;

@@ -60,7 +60,7 @@ class SdreController final : public Controller {
   // Forgets the last P and the counts; the first sample then solves cold in either mode.
   void reset(const Eigen::VectorXd& x0, double t0) override;
   // Throws thetad::Error when the CARE fails at the first sample (no earlier P to fall back on).
-  void control(double t, const Eigen::Ref<const Eigen::VectorXd>& measured_state, const sim::Reference& reference,
+  void control(double t, const Eigen::Ref<const Eigen::VectorXd>& measured_state, const Reference& reference,
                Eigen::Ref<Eigen::VectorXd> u) override;
 
   // P(x) of Eq. (37) with F(x; input), B(x; input), by a cold solve (independent of this

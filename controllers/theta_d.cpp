@@ -370,7 +370,7 @@ Eigen::MatrixXd ThetaDController::value_matrix(const Eigen::VectorXd& x, const E
 }
 
 void ThetaDController::control(double t, const Eigen::Ref<const Eigen::VectorXd>& measured_state,
-                               const sim::Reference& reference, Eigen::Ref<Eigen::VectorXd> u) {
+                               const Reference& reference, Eigen::Ref<Eigen::VectorXd> u) {
   require_reset("control");
   model_->tracking_vector(measured_state, reference, v_);
   // Spec §7.6: start from the input applied at the previous sample; one pass is exact when the

@@ -73,7 +73,7 @@ class ThetaDController final : public Controller {
   // Throws thetad::Error when the CARE has no stabilizing solution at x0.
   void reset(const Eigen::VectorXd& x0, double t0) override;
   // Eq. (35) with the fixed point of spec §7.6. Allocates nothing.
-  void control(double t, const Eigen::Ref<const Eigen::VectorXd>& measured_state, const sim::Reference& reference,
+  void control(double t, const Eigen::Ref<const Eigen::VectorXd>& measured_state, const Reference& reference,
                Eigen::Ref<Eigen::VectorXd> u) override;
 
   // Σ_{i<N} T_i(x, t) with F(x; input), B(x; input): the θ–D approximation of the SDRE's P(x),

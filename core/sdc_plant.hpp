@@ -2,7 +2,7 @@
 
 #include <Eigen/Core>
 
-#include "core/sim/control_law.hpp"
+#include "core/control_law.hpp"
 
 namespace thetad {
 
@@ -32,7 +32,7 @@ class SdcPlant {
   // The vector a controller's value function acts on, built from the measured state and the
   // reference: the state itself for a regulator (the default), V_track of Eq. (36) for the
   // helicopter's position servo. Writes all n entries.
-  virtual void tracking_vector(const Eigen::Ref<const Eigen::VectorXd>& measured, const sim::Reference& reference,
+  virtual void tracking_vector(const Eigen::Ref<const Eigen::VectorXd>& measured, const Reference& reference,
                                Eigen::Ref<Eigen::VectorXd> v) const {
     (void)reference;
     v = measured;

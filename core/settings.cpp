@@ -50,7 +50,12 @@ SettingsError::SettingsError(std::string field, std::string reason, const YAML::
       mark_(mark),
       source_(std::move(source)) {}
 
-Settings::Settings(const YAML::Node& node, std::string path) : node_(node), path_(std::move(path)) {
+Settings::Settings(const YAML::Node& node, std::string path)
+    : Settings(node, std::move(path), std::make_shared<Record>(), {}) {}
+
+Settings::Settings(const YAML::Node& node, std::string path, std::shared_ptr<Record> record,
+                   std::vector<std::string> keys)
+    : node_(node), path_(std::move(path)), record_(std::move(record)), keys_(std::move(keys)) {
   if (node_.IsDefined() && !node_.IsNull() && !node_.IsMap()) {
     throw SettingsError(path_.empty() ? "settings" : path_, "expected a map of fields, got " + kind_of(node_),
                         node_.Mark());
@@ -79,6 +84,37 @@ void Settings::allow_only(std::initializer_list<std::string_view> allowed) const
 
 bool Settings::has(const std::string& key) const { return node_.IsMap() && node_[key].IsDefined(); }
 
+Settings Settings::block(const std::string& key) const {
+  std::vector<std::string> keys = keys_;
+  keys.push_back(key);
+  Settings nested(has(key) ? node_[key] : YAML::Node(), field_name(key), record_, std::move(keys));
+  nested.recorded<YAML::Node>("", YAML::Node(YAML::NodeType::Map));
+  return nested;
+}
+
+// yaml-cpp nodes are handles: reset() rebinds one, while assignment would overwrite the node it
+// refers to. An empty key records the block itself (an empty map where nothing is read from it).
+template <class Value>
+Value Settings::recorded(const std::string& key, Value value) const {
+  YAML::Node at;
+  at.reset(record_->root);
+  const std::size_t depth = key.empty() ? keys_.size() - 1 : keys_.size();
+  for (std::size_t i = 0; i < depth; ++i) {
+    if (!at[keys_[i]].IsMap()) at[keys_[i]] = YAML::Node(YAML::NodeType::Map);
+    const YAML::Node next = at[keys_[i]];
+    at.reset(next);
+  }
+  const std::string& field = key.empty() ? keys_.back() : key;
+  if constexpr (std::is_same_v<Value, YAML::Node>) {
+    if (!at[field].IsMap()) at[field] = value;
+  } else if constexpr (std::is_same_v<Value, Eigen::VectorXd>) {
+    at[field] = std::vector<double>(value.data(), value.data() + value.size());
+  } else {
+    at[field] = value;
+  }
+  return value;
+}
+
 double Settings::entry(const YAML::Node& node, const std::string& field, double min, double max) const {
   double value = 0.0;
   if (!node.IsScalar() || !YAML::convert<double>::decode(node, value)) {
@@ -92,12 +128,11 @@ double Settings::entry(const YAML::Node& node, const std::string& field, double 
 }
 
 double Settings::number(const std::string& key, double fallback, double min, double max) const {
-  if (!has(key)) return fallback;
-  return entry(node_[key], field_name(key), min, max);
+  return recorded(key, has(key) ? entry(node_[key], field_name(key), min, max) : fallback);
 }
 
 int Settings::integer(const std::string& key, int fallback, int min, int max) const {
-  if (!has(key)) return fallback;
+  if (!has(key)) return recorded(key, fallback);
   const YAML::Node node = node_[key];
   int value = 0;
   if (!node.IsScalar() || !YAML::convert<int>::decode(node, value)) {
@@ -107,24 +142,24 @@ int Settings::integer(const std::string& key, int fallback, int min, int max) co
     throw error(key, "expected an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "], got " +
                          std::to_string(value));
   }
-  return value;
+  return recorded(key, value);
 }
 
 bool Settings::boolean(const std::string& key, bool fallback) const {
-  if (!has(key)) return fallback;
+  if (!has(key)) return recorded(key, fallback);
   const YAML::Node node = node_[key];
   bool value = false;
   if (!node.IsScalar() || !YAML::convert<bool>::decode(node, value)) {
     throw error(key, "expected true or false, got " + kind_of(node));
   }
-  return value;
+  return recorded(key, value);
 }
 
 std::string Settings::string(const std::string& key, const std::string& fallback) const {
-  if (!has(key)) return fallback;
+  if (!has(key)) return recorded(key, fallback);
   const YAML::Node node = node_[key];
   if (!node.IsScalar()) throw error(key, "expected a string, got " + kind_of(node));
-  return node.Scalar();
+  return recorded(key, node.Scalar());
 }
 
 std::string Settings::choice(const std::string& key, const std::string& fallback,
@@ -138,7 +173,7 @@ std::string Settings::choice(const std::string& key, const std::string& fallback
 
 Eigen::VectorXd Settings::vector(const std::string& key, const Eigen::VectorXd& fallback, Eigen::Index size,
                                  double min, double max) const {
-  if (!has(key)) return fallback;
+  if (!has(key)) return recorded(key, fallback);
   const YAML::Node node = node_[key];
   if (!node.IsSequence()) {
     throw error(key, "expected a sequence of " + std::to_string(size) + " numbers, got " + kind_of(node));
@@ -150,7 +185,7 @@ Eigen::VectorXd Settings::vector(const std::string& key, const Eigen::VectorXd& 
   for (Eigen::Index i = 0; i < size; ++i) {
     values(i) = entry(node[static_cast<std::size_t>(i)], field_name(key) + "[" + std::to_string(i) + "]", min, max);
   }
-  return values;
+  return recorded(key, std::move(values));
 }
 
 Eigen::MatrixXd Settings::diagonal_weight(const std::string& key, const Eigen::VectorXd& fallback_diagonal,

@@ -7,15 +7,21 @@
 //  - every error is a SettingsError: "<file>:<line>:<column>: field '<name>': <reason>", with the
 //    1-based position of the offending node (of the enclosing map when the field is missing).
 //
+//  - every value a reader takes, given or default, is recorded: resolved() is the block as it was
+//    used, every field included, so a result can say exactly what was flown and a run can be
+//    rebuilt from it.
+//
 // A factory does not know which file its block came from; the caller that does (the command line)
 // adds it with with_settings_source().
 
 #include <initializer_list>
 #include <limits>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <type_traits>
 #include <utility>
+#include <vector>
 
 #include <Eigen/Core>
 #include <yaml-cpp/yaml.h>
@@ -70,6 +76,11 @@ class Settings {
 
   bool has(const std::string& key) const;
 
+  // The nested map under `key` (absent: every default), read with the same rules; its fields are
+  // recorded under `key` in this block's resolved().
+  Settings block(const std::string& key) const;
+  const YAML::Node& node() const { return node_; }
+
   // A finite number in [min, max].
   double number(const std::string& key, double fallback, double min = -inf(), double max = inf()) const;
   // An integer in [min, max] ("3.0" is not an integer).
@@ -96,13 +107,26 @@ class Settings {
   // checks only the caller can make (e.g. between fields).
   SettingsError error(const std::string& key, const std::string& reason) const;
 
+  // Every field read so far through this block and the blocks made from it, with the value used
+  // (the default when the field was absent), as a YAML map.
+  YAML::Node resolved() const { return record_->root; }
+
  private:
+  struct Record {
+    YAML::Node root{YAML::NodeType::Map};
+  };
+  Settings(const YAML::Node& node, std::string path, std::shared_ptr<Record> record, std::vector<std::string> keys);
+  template <class Value>
+  Value recorded(const std::string& key, Value value) const;
+
   static constexpr double inf() { return std::numeric_limits<double>::infinity(); }
   std::string field_name(const std::string& key) const;
   double entry(const YAML::Node& node, const std::string& field, double min, double max) const;
 
   YAML::Node node_;
   std::string path_;
+  std::shared_ptr<Record> record_;
+  std::vector<std::string> keys_;  // where this block's fields go in record_->root
 };
 
 }  // namespace thetad

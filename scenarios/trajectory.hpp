@@ -6,7 +6,7 @@
 
 #include <Eigen/Core>
 
-#include "core/sim/control_law.hpp"
+#include "core/control_law.hpp"
 
 namespace thetad {
 
@@ -88,7 +88,7 @@ const char* motion_type(const Motion& motion);
 // A piecewise-in-time command: phases back to back from t = 0, each a Motion that starts where the
 // previous phase ended (the first where the trajectory starts). Before 0 it gives the first
 // phase's value at its start, after the last phase the last phase's final position.
-class PhasedTrajectory final : public sim::ReferenceTrajectory {
+class PhasedTrajectory final : public ReferenceTrajectory {
  public:
   struct Phase {
     std::string name;

@@ -47,7 +47,7 @@ void SdreRecorder::reset(const Eigen::VectorXd& x0, double t0) {
 }
 
 void SdreRecorder::control(double t, const Eigen::Ref<const Eigen::VectorXd>& measured_state,
-                           const sim::Reference& reference, Eigen::Ref<Eigen::VectorXd> u) {
+                           const Reference& reference, Eigen::Ref<Eigen::VectorXd> u) {
   sdre_.control(t, measured_state, reference, u);
   if (sample_++ % every_ != 0) return;
   time_.push_back(t);
@@ -75,7 +75,7 @@ TuningRecord SdreRecorder::finish(const std::string& scenario, int threads) cons
 }
 
 TuningRecord record_sdre_flight(const SdreController& sdre, const std::string& scenario,
-                                const sim::ReferenceTrajectory& reference, const Eigen::VectorXd& x0,
+                                const ReferenceTrajectory& reference, const Eigen::VectorXd& x0,
                                 const sim::SimulationSettings& settings, const heli::ModelOptions& options, int every,
                                 int threads) {
   const auto samples = static_cast<Eigen::Index>(std::llround(settings.duration / settings.controller_period()));

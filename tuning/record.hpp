@@ -41,7 +41,7 @@ class SdreRecorder final : public Controller {
   std::string name() const override { return sdre_.name(); }
   std::unique_ptr<Controller> clone() const override { return std::make_unique<SdreRecorder>(*this); }
   void reset(const Eigen::VectorXd& x0, double t0) override;
-  void control(double t, const Eigen::Ref<const Eigen::VectorXd>& measured_state, const sim::Reference& reference,
+  void control(double t, const Eigen::Ref<const Eigen::VectorXd>& measured_state, const Reference& reference,
                Eigen::Ref<Eigen::VectorXd> u) override;
   std::vector<std::pair<std::string, double>> counters() const override { return sdre_.counters(); }
 
@@ -61,7 +61,7 @@ class SdreRecorder final : public Controller {
 // Throws thetad::Error if the flight diverges: a record that stops early would tune on a partial
 // trajectory without saying so.
 TuningRecord record_sdre_flight(const SdreController& sdre, const std::string& scenario,
-                                const sim::ReferenceTrajectory& reference, const Eigen::VectorXd& x0,
+                                const ReferenceTrajectory& reference, const Eigen::VectorXd& x0,
                                 const sim::SimulationSettings& settings, const heli::ModelOptions& options,
                                 int every = 10, int threads = 2);
 

@@ -23,9 +23,9 @@ bool live_progress() { return isatty(fileno(stderr)) == 1 && std::getenv("CI") =
 
 // Passes the scenario's command through and shows how far the run has got: the simulator asks for
 // the command once per controller sample in time order, so it doubles as the run's clock.
-class ProgressReference final : public sim::ReferenceTrajectory {
+class ProgressReference final : public ReferenceTrajectory {
  public:
-  ProgressReference(const sim::ReferenceTrajectory& command, double duration, const std::string& label)
+  ProgressReference(const ReferenceTrajectory& command, double duration, const std::string& label)
       : command_(command), duration_(duration), label_(label) {}
 
   Eigen::Vector3d position(double t) const override {
@@ -38,7 +38,7 @@ class ProgressReference final : public sim::ReferenceTrajectory {
   }
 
  private:
-  const sim::ReferenceTrajectory& command_;
+  const ReferenceTrajectory& command_;
   double duration_;
   const std::string& label_;
   mutable int percent_ = -1;

@@ -20,7 +20,7 @@ ExamplePidController::ExamplePidController(const Trim& hover, PidGains gains, do
     : hover_state_(hover.state), hover_input_(hover.input), gains_(std::move(gains)), mass_(mass), gravity_(gravity) {}
 
 void ExamplePidController::control(double, const Eigen::Ref<const Eigen::VectorXd>& x,
-                                   const sim::Reference& reference, Eigen::Ref<Eigen::VectorXd> u) {
+                                   const Reference& reference, Eigen::Ref<Eigen::VectorXd> u) {
   const double phi = x(kPhi), theta = x(kTheta), psi = x(kPsi);
   // Errors in the heading frame (x forward, y right, z down): NED rotated by −ψ; the body
   // velocity rotated by roll and pitch.

@@ -46,7 +46,7 @@ class ExamplePidController final : public Controller {
   std::string name() const override { return "example-pid"; }
   std::unique_ptr<Controller> clone() const override { return std::make_unique<ExamplePidController>(*this); }
   void reset(const Eigen::VectorXd&, double) override {}  // no state of its own
-  void control(double t, const Eigen::Ref<const Eigen::VectorXd>& measured_state, const sim::Reference& reference,
+  void control(double t, const Eigen::Ref<const Eigen::VectorXd>& measured_state, const Reference& reference,
                Eigen::Ref<Eigen::VectorXd> u) override;
 
  private:

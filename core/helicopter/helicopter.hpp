@@ -41,7 +41,7 @@ class Helicopter final : public SdcPlant {
     return options_.rotor_speed_model != ModelOptions::RotorSpeedModel::governor;
   }
   // V_track of Eq. (36) (spec §7.3).
-  void tracking_vector(const Eigen::Ref<const Eigen::VectorXd>& measured, const sim::Reference& reference,
+  void tracking_vector(const Eigen::Ref<const Eigen::VectorXd>& measured, const Reference& reference,
                        Eigen::Ref<Eigen::VectorXd> v) const override;
 
   // F and B at a given main-rotor speed (what the controller's fixed point of spec §7.6 iterates on).

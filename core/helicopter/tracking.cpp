@@ -6,7 +6,7 @@ namespace thetad::heli {
 // s = 1 (Eq. 36, spec §7.3). The measured state's integral entries hold the integral of the
 // measured position, so their difference from the reference integral is the integral error.
 void Helicopter::tracking_vector(const Eigen::Ref<const Eigen::VectorXd>& measured,
-                                 const sim::Reference& reference, Eigen::Ref<Eigen::VectorXd> v) const {
+                                 const Reference& reference, Eigen::Ref<Eigen::VectorXd> v) const {
   v.segment<3>(kXp) = measured.segment<3>(kXp) - reference.position;
   v.segment<11>(kU) = measured.segment<11>(kU);
   v.segment<3>(kXi) = measured.segment<3>(kXi) - reference.integral;

@@ -11,7 +11,7 @@
 #include <Eigen/Core>
 
 #include "core/helicopter/helicopter.hpp"
-#include "core/sim/control_law.hpp"
+#include "core/control_law.hpp"
 #include "core/sim/noise.hpp"
 #include "core/sim/wind_gust.hpp"
 

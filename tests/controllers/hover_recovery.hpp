@@ -42,12 +42,12 @@ inline std::size_t log_column(const std::string& name) {
   throw Error("no log column " + name);
 }
 
-inline HoverRecovery recover_hover(sim::ControlLaw& law, const Eigen::Vector3d& offset, double duration,
+inline HoverRecovery recover_hover(ControlLaw& law, const Eigen::Vector3d& offset, double duration,
                                    double settle_band = 0.05) {
   const Trim& hover = hover_trim_at_3_5_m();
   Eigen::VectorXd x0 = hover.state;
   x0.segment<3>(heli::kXp) += offset;
-  const sim::FixedPosition reference(hover.state.segment<3>(heli::kXp));
+  const FixedPosition reference(hover.state.segment<3>(heli::kXp));
   sim::SimulationSettings settings = sim::SimulationSettings::ideal();
   settings.duration = duration;
   settings.measure_compute_time = false;

@@ -157,7 +157,7 @@ TEST(LqrScheduled, AControlStepAllocatesNothing) {
   LqrScheduledController controller(model(), test_table());
   const Trim& hover = testing::hover_trim_at_3_5_m();
   controller.reset(hover.state, 0.0);
-  sim::Reference reference;
+  Reference reference;
   reference.position = hover.state.segment<3>(heli::kXp);
   Eigen::VectorXd u(heli::kInputDim);
   const long allocations = testing::heap_allocations_during([&] {
@@ -174,7 +174,7 @@ TEST(LqrScheduled, AControlStepAllocatesNothing) {
 }
 
 // A straight line at constant velocity from the origin at 3.5 m.
-class StraightLine final : public sim::ReferenceTrajectory {
+class StraightLine final : public ReferenceTrajectory {
  public:
   explicit StraightLine(const Eigen::Vector3d& velocity) : velocity_(velocity) {}
   Eigen::Vector3d position(double t) const override { return Eigen::Vector3d(0.0, 0.0, -3.5) + velocity_ * t; }

@@ -82,7 +82,7 @@ TEST(Lqr, CommandsTheTrimInputAtTheTrim) {
   const Trim& hover = testing::hover_trim_at_3_5_m();
   auto lqr = ControllerRegistry::instance().make("lqr", {}, {model, hover.state, 0.0});
   lqr->reset(hover.state, 0.0);
-  sim::Reference reference;
+  Reference reference;
   reference.position = hover.state.segment<3>(heli::kXp);
   Eigen::VectorXd u(heli::kInputDim);
   lqr->control(0.0, hover.state, reference, u);

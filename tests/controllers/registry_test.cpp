@@ -69,7 +69,7 @@ TEST(ControllerRegistry, ClonesFlyLikeTheOriginal) {
   Eigen::VectorXd x = hover.state;
   x(heli::kXp) += 0.3;
   x(heli::kV) = 0.2;
-  sim::Reference reference;
+  Reference reference;
   reference.position = hover.state.segment<3>(heli::kXp);
   for (const std::string name : {"sdre", "lqr", "example-pid"}) {
     auto original = ControllerRegistry::instance().make(name, {}, hover_context(model));

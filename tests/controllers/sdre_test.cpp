@@ -25,7 +25,7 @@ SdreSettings scalar_settings(SdreSettings::Mode mode, double q = 1.0, double r =
 
 double control_at(SdreController& sdre, double t, double x) {
   Eigen::VectorXd u(1);
-  sdre.control(t, Eigen::VectorXd::Constant(1, x), sim::Reference{}, u);
+  sdre.control(t, Eigen::VectorXd::Constant(1, x), Reference{}, u);
   return u(0);
 }
 
@@ -105,7 +105,7 @@ TEST(Sdre, ControlUsesTheCareSolutionAtTheMeasuredState) {
   // Small enough that the commanded thrust stays positive (the z gains of §7.2 are ~3e3 N/m).
   const Eigen::VectorXd x = moving_state(0.1);
   sdre.reset(x, 0.0);
-  sim::Reference reference;
+  Reference reference;
   reference.position << 0.2, -0.1, -3.5;
   Eigen::VectorXd u(heli::kInputDim);
   sdre.control(0.0, x, reference, u);
@@ -127,7 +127,7 @@ TEST(Sdre, WarmAndColdModesAgreeAlongAClosedLoopRun) {
   const Trim& hover = testing::hover_trim_at_3_5_m();
   Eigen::VectorXd x0 = hover.state;
   x0(heli::kXp) += 1.0;
-  const sim::FixedPosition reference(hover.state.segment<3>(heli::kXp));
+  const FixedPosition reference(hover.state.segment<3>(heli::kXp));
   sim::SimulationSettings settings = sim::SimulationSettings::ideal();
   settings.duration = 0.3;
   settings.measure_compute_time = false;

@@ -149,7 +149,7 @@ TEST_F(CompanionFixture, ControlIsTheServoLawOnTheSeries) {
   controller.reset(x0, 0.0);
   const VectorXd x = Eigen::Vector2d(0.5, 0.2);
   VectorXd u(1);
-  controller.control(1.0, x, sim::Reference{}, u);
+  controller.control(1.0, x, Reference{}, u);
   EXPECT_EQ(controller.last_iterations(), 1);  // the SDC does not depend on u: one pass is exact
   const MatrixXd P = controller.value_matrix(x, no_input, 1.0);
   const auto sdc = plant.sdc(x, no_input);
@@ -199,7 +199,7 @@ TEST(ThetaDGeneric, FixedPointReachesTheSelfConsistentInput) {
   VectorXd x(5);
   x << 0.2, -0.1, 0.3, 0.05, -0.2;
   VectorXd u(2);
-  controller.control(0.5, x, sim::Reference{}, u);
+  controller.control(0.5, x, Reference{}, u);
   EXPECT_LT(controller.last_input_change(), 1e-13);
   // u = −R⁻¹ Bᵀ(x; u) ΣT_i(x; u) x at the converged u.
   const MatrixXd P = controller.value_matrix(x, u, 0.5);
@@ -214,7 +214,7 @@ TEST(ThetaDGeneric, ControlAllocatesNothing) {
   const auto copy = original.clone();
   const VectorXd x = VectorXd::Constant(6, 0.1);
   VectorXd u(2);
-  const sim::Reference reference;
+  const Reference reference;
   const long probe = thetad::testing::heap_allocations_during([] { const VectorXd v = VectorXd::Zero(4); });
   if (probe < 0) GTEST_SKIP() << "malloc cannot be interposed in this build (AddressSanitizer)";
   ASSERT_GT(probe, 0) << "the allocation counter does not count";
@@ -238,7 +238,7 @@ TEST(ThetaDGeneric, RejectsSettingsThatDoNotFitThePlant) {
   s = plain_series(MatrixXd::Identity(2, 2), MatrixXd::Identity(1, 1), 3);
   ThetaDController not_reset(plant, s);
   VectorXd u(1);
-  EXPECT_THAT([&] { not_reset.control(0.0, VectorXd::Zero(2), sim::Reference{}, u); },
+  EXPECT_THAT([&] { not_reset.control(0.0, VectorXd::Zero(2), Reference{}, u); },
               ::testing::ThrowsMessage<Error>(HasSubstr("before reset")));
 }
 
@@ -375,7 +375,7 @@ TEST_F(HelicopterFixture, FixedPointConvergesWithinThreePassesInClosedLoop) {
   x.segment<3>(heli::kU) << 0.3, -0.21, 0.09;
   x.segment<3>(heli::kPhi) << 0.03, -0.024, 0.06;
   x.segment<3>(heli::kP) << 0.09, -0.06, 0.075;
-  const sim::Reference reference;  // hold the initial position
+  const Reference reference;  // hold the initial position
   const double dt = 1e-3;
   VectorXd u(5);
   int worst_passes = 0;
@@ -404,7 +404,7 @@ TEST_F(HelicopterFixture, ControlAllocatesNothing) {
   ThetaDController controller(model, s);
   controller.reset(rest, 0.0);
   const VectorXd x = typical_state();
-  sim::Reference reference;
+  Reference reference;
   reference.position << 0.0, 0.0, -3.5;
   VectorXd u(5);
   controller.control(0.5, x, reference, u);

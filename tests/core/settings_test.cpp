@@ -126,5 +126,37 @@ TEST(Settings, TheCallerAddsTheFileName) {
             Eigen::Vector4d(1, 2, 3, 4));
 }
 
+TEST(Settings, ResolvedHoldsEveryFieldReadWithTheValueUsed) {
+  const Settings fields(block("  gain: 0.1\n  grid:\n    speeds: [0, 5]\n"));
+  fields.number("gain", 2.5);
+  fields.integer("count", 3);
+  fields.choice("mode", "warm", {"cold", "warm"});
+  fields.vector("v", Eigen::Vector2d(1.0 / 3.0, 2), 2);
+  const Settings grid = fields.block("grid");
+  grid.vector("speeds", Eigen::Vector2d::Zero(), 2);
+  grid.number("altitude", 3.5);
+  fields.block("absent").boolean("flag", true);
+
+  const YAML::Node resolved = fields.resolved();
+  EXPECT_EQ(resolved["gain"].as<double>(), 0.1);
+  EXPECT_EQ(resolved["count"].as<int>(), 3);
+  EXPECT_EQ(resolved["mode"].as<std::string>(), "warm");
+  // Recorded values round-trip exactly, so a run rebuilt from them is the same run.
+  EXPECT_EQ(resolved["v"][0].as<double>(), 1.0 / 3.0);
+  EXPECT_EQ(resolved["grid"]["speeds"][1].as<double>(), 5.0);
+  EXPECT_EQ(resolved["grid"]["altitude"].as<double>(), 3.5);
+  EXPECT_TRUE(resolved["absent"]["flag"].as<bool>());
+  EXPECT_EQ(resolved.size(), 6u);
+  // A block's own record is its part of the whole.
+  EXPECT_EQ(grid.resolved().size(), 6u);
+  // A fresh block records nothing it was not asked for.
+  EXPECT_EQ(Settings(block("  gain: 1\n")).resolved().size(), 0u);
+}
+
+TEST(Settings, ANestedBlockMustBeAMapAndNamesItsPath) {
+  const Settings fields(block("  grid: 3\n"));
+  expect_error(error_of([&] { fields.block("grid"); }), "2:9: field 'grid': expected a map of fields, got '3'");
+}
+
 }  // namespace
 }  // namespace thetad

@@ -22,7 +22,7 @@ int main() {
   auto controller = thetad::ControllerRegistry::instance().make("theta-d", YAML::Node(), {model, x0, 0.0});
   controller->reset(x0, 0.0);
   Eigen::VectorXd u(thetad::heli::kInputDim);
-  controller->control(0.0, x0, thetad::sim::Reference{}, u);
+  controller->control(0.0, x0, thetad::Reference{}, u);
   std::printf("downstream: %s at rest commands T_mr = %.3f N\n", controller->name().c_str(), u(0));
   return error < 1e-10 && std::abs(u(0) - 80.77) < 0.1 ? 0 : 1;
 }

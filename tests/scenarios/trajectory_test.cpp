@@ -13,7 +13,7 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 
 // Central-difference velocity of the command (the primitives give positions only).
-Eigen::Vector3d velocity(const sim::ReferenceTrajectory& trajectory, double t, double h = 1e-6) {
+Eigen::Vector3d velocity(const ReferenceTrajectory& trajectory, double t, double h = 1e-6) {
   return (trajectory.position(t + h) - trajectory.position(t - h)) / (2.0 * h);
 }
 

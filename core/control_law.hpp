@@ -6,7 +6,7 @@
 
 #include <Eigen/Core>
 
-namespace thetad::sim {
+namespace thetad {
 
 // The position integrals of V_track (Eq. 36) are accumulated by one rule, on both sides of the
 // loop (spec §7.3 A-17, §8.4): left rectangles at the controller rate, starting at 0 at t0. At
@@ -89,4 +89,4 @@ class ConstantInput final : public ControlLaw {
   std::string name_;
 };
 
-}  // namespace thetad::sim
+}  // namespace thetad
