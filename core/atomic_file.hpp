@@ -5,9 +5,33 @@
 
 namespace thetad {
 
-// Writes `content` to `path` through a temporary file in the same directory that is renamed onto
-// `path` only once it is complete, so a reader never sees half a file. Creates the directory if
-// needed. Throws thetad::Error naming the path and the reason; no temporary file is left behind.
+// A file being written under a temporary name unique to this process and this write
+// (".NAME.<pid>.<n>.partial" beside the final name), so that two thetad processes writing into one
+// folder never share one. It is removed when the object dies without commit(), and on SIGINT,
+// SIGTERM or SIGHUP (the handler removes every open partial file, then lets the signal end the
+// process as it would have).
+class PartialFile {
+ public:
+  explicit PartialFile(const std::filesystem::path& final_path);
+  ~PartialFile();
+  PartialFile(const PartialFile&) = delete;
+  PartialFile& operator=(const PartialFile&) = delete;
+
+  const std::filesystem::path& path() const { return partial_; }
+  const std::filesystem::path& final_path() const { return final_; }
+  // Renames the partial file onto the final name (atomic on one file system). Throws thetad::Error
+  // naming both on failure (the partial file is then removed).
+  void commit();
+
+ private:
+  std::filesystem::path final_;
+  std::filesystem::path partial_;
+  int slot_ = -1;  // in the signal handler's table
+  bool committed_ = false;
+};
+
+// Writes `content` to `path` through a PartialFile, so a reader never sees half a file. Creates the
+// directory if needed. Throws thetad::Error naming the path and the reason; nothing is left behind.
 void write_file_atomically(const std::filesystem::path& path, const std::string& content);
 
 }  // namespace thetad

@@ -144,9 +144,10 @@ std::optional<bool> optional_boolean(const Settings& block, const std::string& k
   return block.boolean(key, false);
 }
 
-heli::ModelOptions read_model(const YAML::Node& node) {
+heli::ModelOptions read_model(const YAML::Node& node, std::string& preset) {
   const Settings model(node, "simulation.model");
-  heli::ModelOptions options = heli::ModelOptions::preset(model.choice("preset", "resolved", {"resolved", "paper"}));
+  preset = model.choice("preset", "resolved", {"resolved", "paper"});
+  heli::ModelOptions options = heli::ModelOptions::preset(preset);
   if (!node.IsMap()) return options;
   for (const auto& item : node) {
     const std::string key = item.first.Scalar();
@@ -171,8 +172,17 @@ heli::ModelOptions read_model(const YAML::Node& node) {
 void read_simulation(const YAML::Node& root, Scenario& scenario) {
   const YAML::Node node = child(root, "simulation");
   const Settings simulation(node, "simulation");
-  simulation.allow_only({"dt", "controller_period_steps", "seed", "disturbances", "model"});
+  simulation.allow_only({"duration", "dt", "controller_period_steps", "log_every", "summary_only", "timing", "seed",
+                         "disturbances", "model"});
+  if (simulation.has("duration")) {
+    scenario.simulation_duration = positive(simulation, "duration");
+    if (*scenario.simulation_duration > sim::SimulationSettings::kMaxDuration)
+      throw simulation.error("duration", "at most 86400 s (one simulated day)");
+  }
   if (simulation.has("dt")) scenario.dt = positive(simulation, "dt");
+  if (simulation.has("log_every")) scenario.log_every = simulation.integer("log_every", 1, 1);
+  scenario.summary_only = optional_boolean(simulation, "summary_only");
+  scenario.timing = optional_boolean(simulation, "timing");
   if (simulation.has("controller_period_steps"))
     scenario.controller_period_steps = simulation.integer("controller_period_steps", 1, 1);
   if (simulation.has("seed")) scenario.seed = static_cast<std::uint64_t>(simulation.integer("seed", 1, 0));
@@ -193,7 +203,7 @@ void read_simulation(const YAML::Node& root, Scenario& scenario) {
   scenario.wind_noise = optional_boolean(disturbances, "wind_noise");
   scenario.induced_velocity_noise = optional_boolean(disturbances, "induced_velocity_noise");
 
-  scenario.model_options = read_model(child(node, "model"));
+  scenario.model_options = read_model(child(node, "model"), scenario.model_preset);
 }
 
 Scenario read_scenario(const YAML::Node& root, const std::string& source) {
@@ -220,8 +230,11 @@ Scenario read_scenario(const YAML::Node& root, const std::string& source) {
 }  // namespace
 
 sim::SimulationSettings Scenario::simulation_settings(sim::SimulationSettings base) const {
-  base.duration = duration;
+  base.duration = simulation_duration.value_or(duration);
   if (dt) base.dt = *dt;
+  if (log_every) base.log_every = *log_every;
+  if (summary_only) base.keep_log = !*summary_only;
+  if (timing) base.measure_compute_time = *timing;
   if (controller_period_steps) base.controller_period_steps = *controller_period_steps;
   if (seed) base.seed = *seed;
   if (parameter_uncertainty) base.parameter_uncertainty = *parameter_uncertainty;

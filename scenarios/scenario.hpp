@@ -26,9 +26,15 @@ struct Scenario {
   Eigen::VectorXd initial_state;
   PhasedTrajectory trajectory;
   heli::ModelOptions model_options;
+  std::string model_preset = "resolved";  // the preset model_options started from
 
-  // Overrides of the simulation settings; unset keeps the base value.
+  // Overrides of the simulation settings; unset keeps the base value. simulation.duration flies
+  // less (or, holding the last phase's end, more) than the phases' duration.
+  std::optional<double> simulation_duration;
   std::optional<double> dt;
+  std::optional<int> log_every;
+  std::optional<bool> summary_only;
+  std::optional<bool> timing;
   std::optional<int> controller_period_steps;
   std::optional<std::uint64_t> seed;
   std::optional<bool> parameter_uncertainty;

@@ -11,7 +11,7 @@ packages=(
   libgtest-dev libgmock-dev
   libbenchmark-dev
   liblapack-dev liblapacke-dev libslicot-dev
-  libyaml-cpp-dev libcli11-dev nlohmann-json3-dev
+  libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libssl-dev
   python3-matplotlib python3-scipy python3-mpmath
 )
 

@@ -7,7 +7,7 @@ manifest (JSON) and calls this script with it as the only argument:
 
   {"title": "...", "out": "staging dir", "formats": ["png", "svg"], "dpi": 120,
    "schema": [{"name": "t", "unit": "s"}, ...],          # thetad::sim::log_schema(), in order
-   "runs": [{"name": "theta-d", "csv": "...", "summary": {...summary_json...}}, ...]}
+   "runs": [{"name": "theta-d", "csv": "...", "columns": ["t", ...], "summary": {...result JSON...}}, ...]}
 
 The CSV columns are known only through "schema": thetad has already checked each CSV header
 against it, and every column this script draws is looked up there by name, so a renamed column
@@ -130,15 +130,23 @@ class Schema:
 
 
 def load(run, schema, names):
-    """The run's columns `names` (SI units, as logged) as a dict of arrays."""
-    indices = [schema.index[n] for n in names]
+    """The run's columns `names` (SI units, as logged) as a dict of arrays. A run flown without
+    timing has no compute column: it reads as zeros ("not measured")."""
+    index = {name: i for i, name in enumerate(run["columns"])}
+    present = [n for n in names if n in index]
     try:
-        data = np.loadtxt(run["csv"], delimiter=",", skiprows=1, usecols=indices, ndmin=2)
+        data = np.loadtxt(run["csv"], delimiter=",", skiprows=1, usecols=[index[n] for n in present], ndmin=2)
     except (OSError, ValueError) as e:
         raise PlotError(f"{run['csv']}: {e}") from e
     if data.shape[0] == 0:
         raise PlotError(f"{run['csv']}: no samples")
-    return {n: data[:, k] for k, n in enumerate(names)}
+    columns = {n: data[:, k] for k, n in enumerate(present)}
+    for n in names:
+        if n not in index:
+            if n != "compute":
+                raise PlotError(f"{run['csv']}: no column {n}")
+            columns[n] = np.zeros(data.shape[0])
+    return columns
 
 
 def windows(t, y, count):
@@ -288,7 +296,7 @@ def summary(runs, settings):
     axes[0].grid(True, axis="y", linewidth=0.3)
     bars(axes[1], runs, np.linalg.norm(rms, axis=1), "RMS error norm ‖rms(p − p_c)‖ (m)", log=True)
     bars(axes[2], runs, [field(r, "cost", "J") for r in runs], "cost J (Eq. 32)", log=True)
-    bars(axes[3], runs, [1e-3 * field(r, "compute_time_ns", "median") for r in runs],
+    bars(axes[3], runs, [1e-3 * r["summary"].get("compute_time_ns", {}).get("median", 0.0) for r in runs],
          "median compute time (µs)", log=True)
     finish(fig, runs, "summary (hatched: diverged, metrics up to divergence)", "summary", settings,
            with_reference=False)

@@ -74,17 +74,16 @@ TuningRecord SdreRecorder::finish(const std::string& scenario, int threads) cons
   return record;
 }
 
-TuningRecord record_sdre_flight(const SdreController& sdre, const std::string& scenario,
-                                const ReferenceTrajectory& reference, const Eigen::VectorXd& x0,
-                                const sim::SimulationSettings& settings, const heli::ModelOptions& options, int every,
-                                int threads) {
+TuningRecord record_sdre_flight(const Flight& flight, const SdreController& sdre, int every, int threads,
+                                Progress* progress) {
+  const sim::SimulationSettings& settings = flight.settings();
   const auto samples = static_cast<Eigen::Index>(std::llround(settings.duration / settings.controller_period()));
-  SdreRecorder recorder(sdre, every, samples);
-  const sim::RunResult run = sim::simulate(recorder, reference, x0, settings, heli::Parameters::nominal(), options);
-  if (run.summary.status != sim::RunStatus::completed)
-    throw Error("tuning: the SDRE flight of " + scenario + " diverged (" + run.summary.reason +
+  PreparedController prepared{{"sdre-record", "sdre", {}, {}}, std::make_unique<SdreRecorder>(sdre, every, samples), {}};
+  const RunResult run = flight.fly(prepared, progress, "sdre (record):");
+  if (!run.completed())
+    throw Error("tuning: the SDRE flight of " + flight.scenario().name + " diverged (" + run.summary.reason +
                 "); there is no full trajectory to tune on");
-  return recorder.finish(scenario, threads);
+  return dynamic_cast<const SdreRecorder&>(*prepared.controller).finish(flight.scenario().name, threads);
 }
 
 std::string record_csv(const TuningRecord& record) {

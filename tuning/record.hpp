@@ -15,6 +15,8 @@
 #include "controllers/sdre.hpp"
 #include "core/helicopter/model_options.hpp"
 #include "core/sim/simulator.hpp"
+#include "experiment/flight.hpp"
+#include "experiment/progress.hpp"
 
 namespace thetad::tuning {
 
@@ -57,13 +59,11 @@ class SdreRecorder final : public Controller {
   std::vector<double> states_, inputs_;  // column-major n × K and m × K as they grow
 };
 
-// Flies `sdre` (wrapped in an SdreRecorder) through `reference` from x0 and returns the record.
-// Throws thetad::Error if the flight diverges: a record that stops early would tune on a partial
-// trajectory without saying so.
-TuningRecord record_sdre_flight(const SdreController& sdre, const std::string& scenario,
-                                const ReferenceTrajectory& reference, const Eigen::VectorXd& x0,
-                                const sim::SimulationSettings& settings, const heli::ModelOptions& options,
-                                int every = 10, int threads = 2);
+// Flies `sdre` (wrapped in an SdreRecorder) through `flight` and returns the record, keeping every
+// `every`-th sample, σ_max by cold solves on `threads` threads. Throws thetad::Error if the flight
+// diverges: a record that stops early would tune on a partial trajectory without saying so.
+TuningRecord record_sdre_flight(const Flight& flight, const SdreController& sdre, int every = 10, int threads = 2,
+                                Progress* progress = nullptr);
 
 // CSV: two comment lines (format, scenario), then the header t_s,x_0..x_{n-1},u_0..u_{m-1},sigma_max_P
 // and one row per sample in %.17g (exact round trip). Written atomically.

@@ -11,14 +11,15 @@ namespace thetad::app {
 
 struct CompareArguments {
   FlightOptions flight;
-  std::vector<std::string> controllers;
+  std::vector<std::string> controllers;  // NAME, LABEL=NAME, NAME:FILE or LABEL=NAME:FILE
 };
 CLI::App* add_compare_command(CLI::App& app, CompareArguments& arguments);
 
 // thetad compare: every controller on the same scenario and seed (same perturbed plant, same noise
-// and gust sequence), one after the other; <out>/<controller>.csv and .json per run, a table on
-// stdout and <out>/comparison.json. Every controller is built before the first flight, so a bad
-// name or settings block fails before anything is written.
+// and gust sequence), one after the other; <out>/<label>.csv and .json per run, a table on stdout
+// and <out>/comparison.json (removed first, written last: it exists only for a finished compare).
+// Every controller is built before the first flight, so a bad name or settings block fails before
+// anything is written. Exit code 3 when any run diverged.
 int run_compare(const CompareArguments& arguments);
 
 }  // namespace thetad::app

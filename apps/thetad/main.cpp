@@ -10,9 +10,11 @@
 #include "apps/thetad/design_lqr_command.hpp"
 #include "apps/thetad/run_command.hpp"
 #include "apps/thetad/tune_command.hpp"
+#include "experiment/build_info.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"thetad: theta-D, SDRE and LQR control of the X-Cell miniature helicopter"};
+  app.set_version_flag("--version", thetad::version_line());
   app.require_subcommand(1);
   // Bad arguments are one line too, in the same form as every other error.
   app.failure_message([](const CLI::App*, const CLI::Error& error) {

@@ -19,6 +19,8 @@
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/sim/simulator.hpp"
+#include "experiment/run_files.hpp"
+#include "experiment/scenario_files.hpp"
 
 extern char** environ;
 
@@ -35,12 +37,6 @@ fs::path directory_path(const fs::path& directory) {
   return path.has_filename() ? path : path.parent_path();
 }
 
-struct RunInput {
-  std::string name;
-  fs::path csv;
-  ordered_json summary;
-};
-
 std::string read_text(const fs::path& file) {
   std::ifstream in(file, std::ios::binary);
   if (!in) throw Error("cannot read " + file.string() + ": " + std::strerror(errno));
@@ -49,93 +45,23 @@ std::string read_text(const fs::path& file) {
   return text.str();
 }
 
-ordered_json read_json(const fs::path& file) {
-  try {
-    return ordered_json::parse(read_text(file));
-  } catch (const ordered_json::parse_error& error) {
-    throw Error(file.string() + ": not valid JSON: " + error.what());
-  }
-}
-
-std::vector<std::string> split(const std::string& line, char separator) {
-  std::vector<std::string> fields;
-  std::istringstream in(line);
-  for (std::string field; std::getline(in, field, separator);) fields.push_back(field);
-  return fields;
-}
-
-// The CSV's header must be sim::csv_header(), column by column; the error names the first
-// difference, so a log from another thetad version is recognized as such.
-void check_header(const fs::path& csv) {
-  std::ifstream in(csv, std::ios::binary);
-  if (!in) throw Error("cannot read " + csv.string() + ": " + std::strerror(errno));
-  std::string line;
-  if (!std::getline(in, line) || line.empty()) throw Error(csv.string() + ": empty file, expected a thetad run log");
-  if (line.back() == '\r') line.pop_back();
-  if (line == sim::csv_header()) return;
-  const std::vector<std::string> found = split(line, ',');
-  const auto& schema = sim::log_schema();
-  const std::string where = csv.string() + ": header does not match thetad's run-log schema: ";
-  for (std::size_t i = 0; i < std::max(found.size(), schema.size()); ++i) {
-    const std::string column = std::to_string(i + 1);
-    if (i >= found.size()) throw Error(where + "column " + column + " '" + schema[i].header() + "' is missing");
-    if (i >= schema.size()) throw Error(where + "unexpected column " + column + " '" + found[i] + "'");
-    if (found[i] != schema[i].header()) {
-      throw Error(where + "column " + column + " is '" + found[i] + "', expected '" + schema[i].header() + "'");
-    }
-  }
-}
-
-RunInput read_run(const fs::path& directory, const std::string& name, const std::string& csv, const std::string& json) {
-  RunInput run{name, fs::absolute(directory / csv), {}};
-  for (const fs::path& file : {directory / csv, directory / json}) {
-    if (!fs::is_regular_file(file)) throw Error("run '" + name + "': " + file.string() + " is missing");
-  }
-  check_header(run.csv);
-  run.summary = read_json(directory / json);
-  if (!run.summary.is_object()) throw Error((directory / json).string() + ": expected a JSON object (a run summary)");
-  return run;
-}
-
 struct Inputs {
   std::string title;
-  std::vector<RunInput> runs;
+  std::vector<StoredRun> runs;
 };
 
-// A `thetad compare` directory is read through its comparison.json (its order, its scenario);
-// otherwise every <name>.json with a <name>.csv beside it is a run, in name order.
+// The runs of a folder, each checked against its result file (read_result_folder); every run must
+// have a log to draw.
 Inputs read_inputs(const fs::path& in) {
   if (!fs::is_directory(in)) throw Error("--in " + in.string() + ": no such directory");
-  Inputs inputs;
-  const fs::path comparison = in / "comparison.json";
-  if (fs::exists(comparison)) {
-    const ordered_json j = read_json(comparison);
-    try {
-      inputs.title = j.at("scenario").at("name").get<std::string>() + " (" + j.at("disturbances").get<std::string>() +
-                     ", seed " + std::to_string(j.at("seed").get<std::uint64_t>()) + ")";
-      for (const auto& run : j.at("runs")) {
-        inputs.runs.push_back(read_run(in, run.at("controller").get<std::string>(), run.at("csv").get<std::string>(),
-                                       run.at("json").get<std::string>()));
-      }
-    } catch (const ordered_json::exception& error) {
-      throw Error(comparison.string() + ": not a thetad comparison: " + error.what());
-    }
-  } else {
-    inputs.title = directory_path(in).filename().string();
-    std::vector<std::string> stems;
-    for (const auto& entry : fs::directory_iterator(in)) {
-      const fs::path& file = entry.path();
-      if (file.extension() == ".json" && fs::exists(fs::path(file).replace_extension(".csv"))) {
-        stems.push_back(file.stem().string());
-      }
-    }
-    std::sort(stems.begin(), stems.end());
-    for (const auto& stem : stems) inputs.runs.push_back(read_run(in, stem, stem + ".csv", stem + ".json"));
+  Inputs inputs{{}, read_result_folder(in)};
+  for (const StoredRun& run : inputs.runs) {
+    if (run.csv_file.empty())
+      throw Error(run.json_file.string() + ": run '" + run.label + "' has no log to draw (flown --summary-only)");
   }
-  if (inputs.runs.empty()) {
-    throw Error("--in " + in.string() + ": no runs (expected the comparison.json of thetad compare or the " +
-                "<controller>.csv/.json pairs of thetad run)");
-  }
+  const ordered_json& first = inputs.runs.front().result;
+  inputs.title = first.at("provenance").at("scenario").at("name").get<std::string>() + " (seed " +
+                 std::to_string(first.at("seed").get<std::uint64_t>()) + ")";
   return inputs;
 }
 
@@ -149,7 +75,12 @@ std::string manifest(const Inputs& inputs, const PlotArguments& arguments, const
   for (const auto& column : sim::log_schema()) j["schema"].push_back({{"name", column.name}, {"unit", column.unit}});
   j["runs"] = ordered_json::array();
   for (const auto& run : inputs.runs) {
-    j["runs"].push_back({{"name", run.name}, {"csv", run.csv.string()}, {"summary", run.summary}});
+    ordered_json columns = ordered_json::array();
+    for (const auto& column : run.columns) columns.push_back(column.name);
+    j["runs"].push_back({{"name", run.label},
+                         {"csv", fs::absolute(run.csv_file).string()},
+                         {"columns", columns},
+                         {"summary", run.result}});
   }
   return j.dump(1) + "\n";
 }
@@ -200,16 +131,14 @@ std::string trimmed(std::string text) {
   return text;
 }
 
-// The script installed beside the program (bin/../share/thetad) when there is one: an installed
-// thetad must not depend on the source tree it was built from.
+// The first plotting script of the data folders: the installed one for an installed thetad (it
+// must not depend on the source tree it was built from), the source tree's for a build.
 fs::path default_plot_script() {
   std::error_code error;
-  const fs::path program = fs::read_symlink("/proc/self/exe", error);
-  if (!error) {
-    const fs::path installed = (program.parent_path() / THETAD_INSTALLED_PLOT_SCRIPT).lexically_normal();
-    if (fs::is_regular_file(installed, error)) return installed;
+  for (const fs::path& folder : data_directories()) {
+    if (fs::is_regular_file(folder / "scripts" / "plot_run.py", error)) return folder / "scripts" / "plot_run.py";
   }
-  return THETAD_PLOT_SCRIPT;
+  return data_directories().back() / "scripts" / "plot_run.py";
 }
 
 }  // namespace

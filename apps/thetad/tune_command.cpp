@@ -13,6 +13,10 @@
 #include "controllers/theta_d.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "experiment/controller_spec.hpp"
+#include "experiment/result_json.hpp"
+#include "experiment/run_files.hpp"
+#include "experiment/scenario_files.hpp"
 #include "tuning/record.hpp"
 #include "tuning/sigma_fit.hpp"
 
@@ -23,9 +27,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
-
-// Redrawing one line in place only makes sense on a terminal a person watches (not in CI logs).
-bool live_progress() { return isatty(fileno(stderr)) == 1 && std::getenv("CI") == nullptr; }
 
 std::string numbers(const Eigen::VectorXd& v) {
   std::string text;
@@ -46,16 +47,16 @@ std::filesystem::path default_holdout(const std::filesystem::path& scenario) {
   return std::filesystem::exists(sibling) ? sibling : std::filesystem::path();
 }
 
-// The θ–D the command flies and tunes: the registry's defaults (the paper's weights, u0 = hover
-// thrust) with this many terms and these k, l (empty: the paper's 1).
-ThetaDController make_theta_d(const Flight& flight, const heli::Helicopter& model, int terms, const Eigen::VectorXd& k,
-                              const Eigen::VectorXd& l) {
-  const auto registered = flight.make_controller("theta-d");
-  ThetaDSettings settings = dynamic_cast<const ThetaDController&>(*registered).settings();
-  settings.terms = terms;
-  settings.k = k;
-  settings.l = l;
-  return ThetaDController(model, settings);
+// The θ–D the command flies and tunes: the settings file's block (or the defaults) with this many
+// terms and these k, l (empty: the defaults, all 1), built for `flight`.
+PreparedController make_theta_d(const Flight& flight, const YAML::Node& base, const std::string& label, int terms,
+                                const Eigen::VectorXd& k, const Eigen::VectorXd& l) {
+  YAML::Node block = base ? YAML::Clone(base) : YAML::Node(YAML::NodeType::Map);
+  block["terms"] = terms;
+  const auto values = [](const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); };
+  if (k.size() > 0) block["k"] = values(k);
+  if (l.size() > 0) block["l"] = values(l);
+  return flight.prepare({label, "theta-d", block, {}});
 }
 
 struct Validation {
@@ -75,17 +76,83 @@ nlohmann::ordered_json to_json(const Validation& v) {
           {"cost", s.cost}};
 }
 
+tuning::FitOptions fit_options(const TuneArguments& a, std::uint64_t seed) {
+  tuning::FitOptions options;
+  options.algorithm = a.algorithm;
+  options.weighting = a.relative ? tuning::Weighting::relative : tuning::Weighting::absolute;
+  options.k_lower = a.k_bounds[0];
+  options.k_upper = a.k_bounds[1];
+  options.l_lower = a.l_bounds[0];
+  options.l_upper = a.l_bounds[1];
+  options.seed = seed;
+  tuning::check_fit_options(options, a.terms - 1);
+  return options;
+}
+
+// The record of --record when that file exists (it must be of this scenario); nothing otherwise.
+std::optional<tuning::TuningRecord> reused_record(const TuneArguments& a, const Flight& flight) {
+  if (a.record.empty() || !std::filesystem::exists(a.record)) return std::nullopt;
+  const heli::Helicopter& model = flight.model();
+  tuning::TuningRecord record = tuning::read_record(a.record, model.state_dim(), model.input_dim());
+  if (record.scenario != flight.scenario().name)
+    throw Error(a.record.string() + ": recorded on scenario '" + record.scenario + "', not '" + flight.scenario().name +
+                "' (delete it or name another --record file to re-fly)");
+  return record;
+}
+
+// The SDRE flight recorded now and saved (to --record, else <out>/sdre-record.csv).
+tuning::TuningRecord fly_record(const TuneArguments& a, const Flight& flight, const YAML::Node& settings,
+                                Progress& progress) {
+  const PreparedController sdre = flight.prepare(parse_controller_spec("sdre", settings, a.flight.settings.string()));
+  const auto start = Clock::now();
+  tuning::TuningRecord record = tuning::record_sdre_flight(flight, dynamic_cast<const SdreController&>(*sdre.controller),
+                                                           a.every, a.threads, &progress);
+  const std::filesystem::path file = a.record.empty() ? a.flight.out / "sdre-record.csv" : a.record;
+  tuning::write_record(file, record);
+  std::fprintf(stderr, "recorded %lld samples with sigma_max(P) by cold CARE solves (%.1f s): %s\n",
+               static_cast<long long>(record.size()), seconds_since(start), file.c_str());
+  return record;
+}
+
+std::string curves_csv(const tuning::SigmaMatch& match, const tuning::TuningRecord& record,
+                       const tuning::FitResult& fit) {
+  const Eigen::VectorXd ones = Eigen::VectorXd::Ones(match.parameters());
+  const Eigen::VectorXd sigma_default = match.sigma(ones, ones), sigma_tuned = match.sigma(fit.k, fit.l);
+  std::string curves = "t_s,sigma_sdre,sigma_theta_d_default,sigma_theta_d_tuned\n";
+  char line[128];
+  for (Eigen::Index k = 0; k < match.samples(); ++k) {
+    std::snprintf(line, sizeof line, "%.6f,%.10g,%.10g,%.10g\n", record.time[static_cast<std::size_t>(k)],
+                  match.sigma_sdre()[k], sigma_default[k], sigma_tuned[k]);
+    curves += line;
+  }
+  return curves;
+}
+
+// The default and the tuned θ–D flown on each validation flight.
+std::vector<Validation> validate(const TuneArguments& a, const std::vector<std::pair<const Flight*, std::string>>& flights,
+                                 const YAML::Node& base, const tuning::FitResult& fit, Progress& progress) {
+  std::vector<Validation> validations;
+  for (const auto& [flight, role] : flights) {
+    for (const bool tuned : {false, true}) {
+      const std::string parameters = tuned ? "tuned" : "default";
+      PreparedController controller = tuned ? make_theta_d(*flight, base, "theta-d-tuned", a.terms, fit.k, fit.l)
+                                            : make_theta_d(*flight, base, "theta-d-default", a.terms, {}, {});
+      const RunResult run =
+          flight->fly(controller, &progress, "theta-d " + parameters + " on " + flight->scenario().name + ":");
+      validations.push_back({flight->scenario().name, role, parameters, run.summary});
+    }
+  }
+  return validations;
+}
+
 }  // namespace
 
 CLI::App* add_tune_command(CLI::App& app, TuneArguments& a) {
   auto* tune = app.add_subcommand(
       "tune", "Fit theta-D's k_i, l_i so that sigma_max(sum T_i) matches sigma_max(P_SDRE) along an SDRE flight "
               "(paper-spec 7.5); validate on the tuning and a held-out scenario");
-  tune->add_option("--scenario", a.flight.scenario, "Scenario to record the SDRE flight on (YAML)")->required();
-  tune->add_option("--seed", a.flight.seed, "Seed of the runs' random numbers (default: the scenario's, else 1)")
-      ->each([&a](const std::string&) { a.flight.seed_given = true; });
-  tune->add_flag("--ideal", a.flight.ideal, "No parameter uncertainty, noise or wind");
-  tune->add_option("--out", a.flight.out, "Output directory")->required();
+  add_flight_options(*tune, a.flight);
+  tune->get_option("--out")->required();
   // The expansion's pieces grow fast with N (5, 11, 29 for N = 3, 4, 5; 516 for N = 8), and every
   // sample stores all of them: N = 5 already needs ~340 MB for scenario I's 8500 samples.
   tune->add_option("--terms", a.terms, "N: the theta-D series T0 + ... + T_{N-1} (tunes N-1 pairs k_i, l_i)")
@@ -112,62 +179,33 @@ CLI::App* add_tune_command(CLI::App& app, TuneArguments& a) {
 }
 
 int run_tune(const TuneArguments& a) {
-  // Everything that can be wrong with the inputs fails here, before a flight or a file.
-  tuning::FitOptions options;
-  options.algorithm = a.algorithm;
-  options.weighting = a.relative ? tuning::Weighting::relative : tuning::Weighting::absolute;
-  options.k_lower = a.k_bounds[0];
-  options.k_upper = a.k_bounds[1];
-  options.l_lower = a.l_bounds[0];
-  options.l_upper = a.l_bounds[1];
-  options.seed = a.flight.seed;
-  tuning::check_fit_options(options, a.terms - 1);
-  const Flight flight(a.flight);
-  const Scenario& scenario = flight.scenario();
-  const heli::Helicopter model(heli::Parameters::nominal(), scenario.model_options);
-
+  // Everything that can be wrong with the inputs fails here, before a flight or a file. The
+  // validation flights need their summaries only.
+  RunControls controls = run_controls(a.flight);
+  controls.summary_only = true;
+  const Flight flight(a.flight.scenario, controls);
+  const tuning::FitOptions options_without_progress = fit_options(a, flight.settings().seed);
+  const YAML::Node settings = a.flight.settings.empty() ? YAML::Node() : load_settings_file(a.flight.settings);
+  const YAML::Node base = settings.IsMap() && settings["theta-d"] ? settings["theta-d"] : YAML::Node();
   std::optional<Flight> holdout;
-  const std::filesystem::path holdout_file = a.holdout.empty() ? default_holdout(a.flight.scenario) : a.holdout;
-  if (!a.no_validation && !holdout_file.empty()) {
-    FlightOptions options_holdout = a.flight;
-    options_holdout.scenario = holdout_file;
-    holdout.emplace(options_holdout);
-  }
+  const std::filesystem::path holdout_file =
+      a.holdout.empty() ? default_holdout(find_scenario(a.flight.scenario)) : a.holdout;
+  if (!a.no_validation && !holdout_file.empty()) holdout.emplace(holdout_file.string(), controls);
+  const std::optional<tuning::TuningRecord> reused = reused_record(a, flight);
+  prepare_output_folder(a.flight.out);
 
-  const bool reuse = !a.record.empty() && std::filesystem::exists(a.record);
-  std::optional<tuning::TuningRecord> record;
-  if (reuse) {
-    record = tuning::read_record(a.record, model.state_dim(), model.input_dim());
-    if (record->scenario != scenario.name)
-      throw Error(a.record.string() + ": recorded on scenario '" + record->scenario + "', not '" + scenario.name +
-                  "' (delete it or name another --record file to re-fly)");
-  }
-
-  const auto& out = a.flight.out;
-  if (!reuse) {
-    const auto sdre = flight.make_controller("sdre");
-    const auto samples = static_cast<Eigen::Index>(std::llround(flight.settings().duration / flight.settings().controller_period()));
-    tuning::SdreRecorder recorder(dynamic_cast<const SdreController&>(*sdre), a.every, samples);
-    const sim::RunResult run = flight.fly(recorder, "sdre (record):");
-    if (run.summary.status != sim::RunStatus::completed)
-      throw Error("the SDRE flight of " + scenario.name + " diverged (" + run.summary.reason +
-                  "); there is no full trajectory to tune on");
-    const auto start = Clock::now();
-    record = recorder.finish(scenario.name, a.threads);
-    const std::filesystem::path file = a.record.empty() ? out / "sdre-record.csv" : a.record;
-    tuning::write_record(file, *record);
-    std::fprintf(stderr, "recorded %lld samples, sigma_max(P) by cold CARE solves in %.1f s: %s\n",
-                 static_cast<long long>(record->size()), seconds_since(start), file.c_str());
-  }
-
+  Progress progress(Progress::mode_for_stderr(a.flight.quiet));
+  const tuning::TuningRecord record = reused ? *reused : fly_record(a, flight, settings, progress);
   // The θ–D starts where the recorded flight started: A0, g0, T0 at the scenario's x0, t0 = 0.
-  ThetaDController theta_d = make_theta_d(flight, model, a.terms, {}, {});
-  theta_d.reset(scenario.initial_state, 0.0);
+  PreparedController theta_d = make_theta_d(flight, base, "theta-d", a.terms, {}, {});
+  auto& series = dynamic_cast<ThetaDController&>(*theta_d.controller);
+  series.reset(flight.scenario().initial_state, 0.0);
   const auto expansion_start = Clock::now();
-  const tuning::SigmaMatch match(theta_d, *record, a.threads);
+  const tuning::SigmaMatch match(series, record, a.threads);
   const double expansion_seconds = seconds_since(expansion_start);
 
-  const bool live = live_progress();
+  tuning::FitOptions options = options_without_progress;
+  const bool live = progress.mode() == Progress::Mode::live;
   auto last_draw = Clock::now();
   options.progress = [&](int evaluations, double best) {
     if (!live || Clock::now() - last_draw < std::chrono::milliseconds(100)) return;
@@ -177,44 +215,31 @@ int run_tune(const TuneArguments& a) {
   const tuning::FitResult fit = tuning::fit(match, options);
   if (live) std::fprintf(stderr, "\r\033[K");
 
-  // The settings file: a map from controller name to its block, as thetad run --settings reads it.
-  const std::filesystem::path settings_file = out / "theta-d-tuned.yaml";
-  write_file_atomically(settings_file, "# thetad tune on " + scenario.name + " (" + a.algorithm + ", " +
-                                           (a.relative ? "relative" : "absolute") + " residual)\ntheta-d:\n  terms: " +
-                                           std::to_string(a.terms) + "\n  k: " + numbers(fit.k) + "\n  l: " +
-                                           numbers(fit.l) + "\n");
-  const Eigen::VectorXd ones = Eigen::VectorXd::Ones(match.parameters());
-  const Eigen::VectorXd sigma_default = match.sigma(ones, ones), sigma_tuned = match.sigma(fit.k, fit.l);
-  std::string curves = "t_s,sigma_sdre,sigma_theta_d_default,sigma_theta_d_tuned\n";
-  char line[128];
-  for (Eigen::Index k = 0; k < match.samples(); ++k) {
-    std::snprintf(line, sizeof line, "%.6f,%.10g,%.10g,%.10g\n", record->time[static_cast<std::size_t>(k)],
-                  match.sigma_sdre()[k], sigma_default[k], sigma_tuned[k]);
-    curves += line;
-  }
-  write_file_atomically(out / "sigma-curves.csv", curves);
+  // The settings file: a map from controller name to its block, every field as the tuned θ–D uses
+  // it, so `thetad compare --controllers tuned=theta-d:FILE` flies exactly what was tuned.
+  const PreparedController tuned = make_theta_d(flight, base, "theta-d", a.terms, fit.k, fit.l);
+  YAML::Node file(YAML::NodeType::Map);
+  file["theta-d"] = tuned.settings;
+  YAML::Emitter emitter;
+  emitter.SetDoublePrecision(17);
+  emitter << file;
+  const std::filesystem::path settings_file = a.flight.out / "theta-d-tuned.yaml";
+  write_file_atomically(settings_file, "# thetad tune on " + flight.scenario().name + " (" + a.algorithm + ", " +
+                                           (a.relative ? "relative" : "absolute") + " residual, seed " +
+                                           std::to_string(flight.settings().seed) + ")\n" + emitter.c_str() + "\n");
+  write_file_atomically(a.flight.out / "sigma-curves.csv", curves_csv(match, record, fit));
 
-  std::vector<Validation> validations;
-  if (!a.no_validation) {
-    const auto validate = [&](const Flight& f, const std::string& role) {
-      const heli::Helicopter f_model(heli::Parameters::nominal(), f.scenario().model_options);
-      for (const bool tuned : {false, true}) {
-        ThetaDController controller = tuned ? make_theta_d(f, f_model, a.terms, fit.k, fit.l)
-                                            : make_theta_d(f, f_model, a.terms, ones, ones);
-        const std::string parameters = tuned ? "tuned" : "default";
-        const sim::RunResult run = f.fly(controller, "theta-d " + parameters + " on " + f.scenario().name + ":");
-        validations.push_back({f.scenario().name, role, parameters, run.summary});
-      }
-    };
-    validate(flight, "tuning");
-    if (holdout) validate(*holdout, "held-out");
-  }
+  std::vector<std::pair<const Flight*, std::string>> validation_flights;
+  if (!a.no_validation) validation_flights.emplace_back(&flight, "tuning");
+  if (holdout) validation_flights.emplace_back(&*holdout, "held-out");
+  const std::vector<Validation> validations = validate(a, validation_flights, base, fit, progress);
 
   const double rms_default = std::sqrt(fit.start_residual / static_cast<double>(match.samples()));
   const double rms_tuned = std::sqrt(fit.residual / static_cast<double>(match.samples()));
   nlohmann::ordered_json j;
-  j["scenario"] = scenario.name;
-  j["record"] = {{"samples", match.samples()}, {"reused", reuse}};
+  j["scenario"] = flight.scenario().name;
+  j["seed"] = flight.settings().seed;
+  j["record"] = {{"samples", match.samples()}, {"reused", reused.has_value()}};
   j["terms"] = a.terms;
   j["algorithm"] = a.algorithm;
   j["weighting"] = a.relative ? "relative" : "absolute";
@@ -232,10 +257,11 @@ int run_tune(const TuneArguments& a) {
   j["threads"] = a.threads;
   j["validation"] = nlohmann::ordered_json::array();
   for (const Validation& v : validations) j["validation"].push_back(to_json(v));
-  write_file_atomically(out / "tuning.json", j.dump(2) + "\n");
+  j["provenance"] = to_json(flight.provenance());
+  write_file_atomically(a.flight.out / "tuning.json", j.dump(2) + "\n");
 
   // Quiet and parseable: one key=value line per figure.
-  std::printf("scenario=%s samples=%lld terms=%d algorithm=%s weighting=%s\n", scenario.name.c_str(),
+  std::printf("scenario=%s samples=%lld terms=%d algorithm=%s weighting=%s\n", flight.scenario().name.c_str(),
               static_cast<long long>(match.samples()), a.terms, a.algorithm.c_str(), a.relative ? "relative" : "absolute");
   std::printf("k=%s\nl=%s\n", numbers(fit.k).c_str(), numbers(fit.l).c_str());
   std::printf("residual_default=%.10g residual_tuned=%.10g rms_sigma_error_default=%.6g rms_sigma_error_tuned=%.6g\n",
@@ -250,7 +276,8 @@ int run_tune(const TuneArguments& a) {
                 s.rms_tracking_error.x(), s.rms_tracking_error.y(), s.rms_tracking_error.z(), s.max_tracking_error.x(),
                 s.max_tracking_error.y(), s.max_tracking_error.z(), s.cost);
   }
-  std::printf("wrote=%s,%s,%s\n", settings_file.c_str(), (out / "sigma-curves.csv").c_str(), (out / "tuning.json").c_str());
+  std::printf("wrote=%s,%s,%s\n", settings_file.c_str(), (a.flight.out / "sigma-curves.csv").c_str(),
+              (a.flight.out / "tuning.json").c_str());
   return 0;
 }
 

@@ -10,7 +10,7 @@
 namespace thetad::app {
 
 struct TuneArguments {
-  FlightOptions flight;             // --scenario, --seed, --ideal, --out (no --settings: the fit makes one)
+  FlightOptions flight;             // the SDRE and θ–D blocks of --settings start the fit; --out required
   int terms = 3;                    // N of the θ–D series
   std::string algorithm = "LN_BOBYQA";
   std::filesystem::path record;     // reused when it exists, else written there

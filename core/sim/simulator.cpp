@@ -2,16 +2,12 @@
 
 #include <algorithm>
 #include <array>
-#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <optional>
 #include <random>
 #include <utility>
-
-#include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
 #include "core/helicopter/paper_weights.hpp"
@@ -118,8 +114,11 @@ void validate(const SimulationSettings& settings, const Eigen::VectorXd& x0) {
   if (!(settings.dt > 0.0) || !std::isfinite(settings.dt)) throw Error("simulate: dt must be positive and finite");
   if (settings.controller_period_steps < 1) throw Error("simulate: controller_period_steps must be at least 1");
   if (settings.log_every < 1) throw Error("simulate: log_every must be at least 1");
-  if (!(settings.duration >= settings.controller_period()) || !std::isfinite(settings.duration))
-    throw Error("simulate: duration must be finite and at least one controller period");
+  if (!(settings.duration >= settings.controller_period()) || !(settings.duration <= SimulationSettings::kMaxDuration))
+    throw Error("simulate: duration must be at least one controller period and at most " +
+                std::to_string(static_cast<int>(SimulationSettings::kMaxDuration)) + " s (one simulated day)");
+  if (settings.duration / settings.controller_period() > 1e10)
+    throw Error("simulate: the controller period is too short for the duration (more than 1e10 samples)");
   if (x0.size() != kStateDim)
     throw Error("simulate: x0 has " + std::to_string(x0.size()) + " entries, the helicopter has " +
                 std::to_string(kStateDim));
@@ -142,50 +141,6 @@ ComputeTimeStatistics statistics(std::vector<std::int64_t> samples) {
   return {sum / static_cast<double>(n), median, static_cast<double>(samples[std::max<std::size_t>(rank, 1) - 1])};
 }
 
-const char* to_string(RunStatus status) { return status == RunStatus::completed ? "completed" : "diverged"; }
-
-const char* to_string(WindGustSettings::Model model) {
-  return model == WindGustSettings::Model::held_white ? "held_white" : "gauss_markov";
-}
-
-const char* to_string(MeasurementNoiseOn on) {
-  return on == MeasurementNoiseOn::feedback_signal ? "feedback_signal" : "absolute_state";
-}
-
-nlohmann::ordered_json settings_json(const SimulationSettings& s) {
-  nlohmann::ordered_json j;
-  j["dt_s"] = s.dt;
-  j["controller_period_steps"] = s.controller_period_steps;
-  j["controller_period_s"] = s.controller_period();
-  j["log_every"] = s.log_every;
-  j["duration_s"] = s.duration;
-  j["parameter_uncertainty"] = s.parameter_uncertainty;
-  j["wind_gust"] = {{"enabled", s.wind_gust.enabled},
-                    {"model", to_string(s.wind_gust.model)},
-                    {"sigma_m_per_s", s.wind_gust.sigma},
-                    {"correlation_time_s", s.wind_gust.correlation_time}};
-  j["noise"] = {{"measurement", s.noise.measurement},
-                {"measurement_on", to_string(s.noise.measurement_on)},
-                {"actuator", s.noise.actuator},
-                {"wind_component", s.noise.wind_component},
-                {"induced_velocity", s.noise.induced_velocity}};
-  j["divergence_limits"] = {{"max_attitude_rad", s.limits.max_attitude},
-                            {"max_body_rate_rad_per_s", s.limits.max_body_rate},
-                            {"max_speed_m_per_s", s.limits.max_speed},
-                            {"max_ground_penetration_m", s.limits.max_ground_penetration}};
-  j["measure_compute_time"] = s.measure_compute_time;
-  return j;
-}
-
-template <typename Writer>
-void write_file(const std::filesystem::path& path, Writer&& write) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out) throw Error("cannot open " + path.string() + " for writing");
-  write(out);
-  out.close();
-  if (!out) throw Error("writing " + path.string() + " failed");
-}
-
 }  // namespace
 
 SimulationSettings SimulationSettings::ideal() {
@@ -204,18 +159,9 @@ const std::vector<LogColumn>& log_schema() {
   return schema;
 }
 
-std::string csv_header() {
-  std::string header;
-  for (const auto& column : log_schema()) {
-    if (!header.empty()) header += ',';
-    header += column.header();
-  }
-  return header;
-}
-
 RunResult simulate(ControlLaw& law, const ReferenceTrajectory& reference, const Eigen::VectorXd& x0,
                    const SimulationSettings& settings, const heli::Parameters& nominal,
-                   const heli::ModelOptions& options) {
+                   const heli::ModelOptions& options, const std::function<void(double t)>& progress) {
   using namespace heli;
   validate(settings, x0);
   const double period = settings.controller_period();
@@ -239,10 +185,22 @@ RunResult simulate(ControlLaw& law, const ReferenceTrajectory& reference, const 
       if (entry.category == UncertaintyCategory::parameter) summary.parameter_factors.emplace_back(entry.name, entry.factor);
     }
   }
+  // Sized before the first step, so that the step loop allocates nothing; bounded up front, so
+  // that a flight too long to log fails now with advice instead of with bad_alloc later.
+  const std::int64_t logged_rows = settings.keep_log ? (samples + settings.log_every - 1) / settings.log_every : 0;
   const auto columns = static_cast<std::int64_t>(log_schema().size());
-  result.log.values.reserve(static_cast<std::size_t>((samples + settings.log_every - 1) / settings.log_every * columns));
+  const double bytes = 8.0 * static_cast<double>(logged_rows * columns + (settings.measure_compute_time ? samples : 0));
+  if (bytes > SimulationSettings::kMaxRunMemory) {
+    char advice[320];
+    std::snprintf(advice, sizeof advice,
+                  "simulate: this flight's log would need %.1f GiB (%lld logged samples), more than the %.0f GiB a run "
+                  "may hold: log every N-th sample (log_every, --log-every) or only the summary (--summary-only)",
+                  bytes / (1 << 30), static_cast<long long>(logged_rows), SimulationSettings::kMaxRunMemory / (1 << 30));
+    throw Error(advice);
+  }
+  result.log.values.reserve(static_cast<std::size_t>(logged_rows * columns));
   std::vector<std::int64_t> compute_ns;
-  compute_ns.reserve(static_cast<std::size_t>(samples));
+  if (settings.measure_compute_time) compute_ns.reserve(static_cast<std::size_t>(samples));
 
   Eigen::VectorXd x = x0;
   Eigen::VectorXd measured(kStateDim), command(kInputDim), applied(kInputDim), v_track(kStateDim);
@@ -257,6 +215,7 @@ RunResult simulate(ControlLaw& law, const ReferenceTrajectory& reference, const 
   double t = 0.0;
   for (std::int64_t k = 0; k < samples && !failure; ++k) {
     t = static_cast<double>(k) * period;
+    if (progress && k % kProgressSamples == 0) progress(t);
     draws.draw(rng);
     const Eigen::Vector3d wind = gust.sample(x[kZp], draws.gust);
     plant.set_environment(sample_environment(wind, draws, levels, settings.noise));
@@ -301,10 +260,10 @@ RunResult simulate(ControlLaw& law, const ReferenceTrajectory& reference, const 
     error_square_sum += error.cwiseAbs2();
     summary.max_tracking_error = summary.max_tracking_error.cwiseMax(error.cwiseAbs());
     command_square_sum += command.cwiseAbs2();
-    compute_ns.push_back(elapsed_ns);
+    if (settings.measure_compute_time) compute_ns.push_back(elapsed_ns);
     ++summary.controller_samples;
 
-    if (k % settings.log_every == 0) {
+    if (settings.keep_log && k % settings.log_every == 0) {
       auto& row = result.log.values;
       row.push_back(t);
       row.insert(row.end(), position_command.begin(), position_command.end());
@@ -351,80 +310,6 @@ RunResult simulate(ControlLaw& law, const ReferenceTrajectory& reference, const 
   summary.compute_ns_median = timing.median;
   summary.compute_ns_p99 = timing.p99;
   return result;
-}
-
-void write_csv(const RunLog& log, std::ostream& out) {
-  out << csv_header() << '\n';
-  const std::size_t columns = log_schema().size();
-  // Shortest round-trip text: exact, and the same bytes for the same double on every run.
-  char buffer[32];
-  for (std::size_t i = 0; i < log.values.size(); ++i) {
-    const auto [end, status] = std::to_chars(buffer, buffer + sizeof buffer, log.values[i]);
-    out.write(buffer, end - buffer);
-    out.put((i + 1) % columns == 0 ? '\n' : ',');
-  }
-}
-
-std::string summary_json(const RunSummary& summary) {
-  nlohmann::ordered_json j;
-  const auto vector3 = [](const Eigen::Vector3d& v) { return nlohmann::ordered_json::array({v.x(), v.y(), v.z()}); };
-  j["controller"] = summary.controller;
-  j["seed"] = summary.settings.seed;
-  j["status"] = to_string(summary.status);
-  j["reason"] = summary.reason;
-  j["end_time_s"] = summary.end_time;
-  j["controller_samples"] = summary.controller_samples;
-  j["model_options"] = summary.model_options;
-  nlohmann::ordered_json factors = nlohmann::ordered_json::object();
-  for (const auto& [name, factor] : summary.parameter_factors) factors[name] = factor;
-  j["parameter_factors"] = factors;
-  nlohmann::ordered_json counters = nlohmann::ordered_json::object();
-  for (const auto& [name, count] : summary.controller_counters) counters[name] = count;
-  j["controller_counters"] = counters;
-  j["settings"] = settings_json(summary.settings);
-  j["tracking_error_m"] = {{"axes", {"x", "y", "z"}},
-                           {"rms", vector3(summary.rms_tracking_error)},
-                           {"max", vector3(summary.max_tracking_error)}};
-  nlohmann::ordered_json effort;
-  effort["definition"] = "RMS of the commanded input per channel over the controller samples";
-  for (int i = 0; i < kInputDim; ++i) {
-    effort["rms"][std::string(kInputColumns[i].name) + "_" + kInputColumns[i].unit] = summary.command_rms[i];
-  }
-  j["control_effort"] = effort;
-  j["cost"] = {{"definition",
-                "J = 1/2 sum_k (V_track' Q V_track + u_cmd' R u_cmd) T_c, Eq. 32 with Q, R of Eqs. 33-34, "
-                "true V_track"},
-               {"J", summary.cost}};
-  j["compute_time_ns"] = {{"mean", summary.compute_ns_mean},
-                          {"median", summary.compute_ns_median},
-                          {"p99", summary.compute_ns_p99}};
-  return j.dump(2);
-}
-
-RunFiles write_run(const RunResult& result, const std::filesystem::path& directory, const std::string& stem) {
-  const RunFiles files{directory / (stem + ".csv"), directory / (stem + ".json")};
-  const std::filesystem::path csv_partial = directory / ("." + stem + ".csv.partial");
-  const std::filesystem::path json_partial = directory / ("." + stem + ".json.partial");
-  try {
-    write_file(csv_partial, [&](std::ostream& out) { write_csv(result.log, out); });
-    write_file(json_partial, [&](std::ostream& out) { out << summary_json(result.summary) << '\n'; });
-    std::filesystem::rename(csv_partial, files.csv);
-    try {
-      std::filesystem::rename(json_partial, files.json);
-    } catch (...) {
-      // The pair is the unit: a CSV without its summary must not look like a finished run.
-      std::error_code ignored;
-      std::filesystem::remove(files.csv, ignored);
-      throw;
-    }
-  } catch (const std::exception& error) {
-    std::error_code ignored;
-    std::filesystem::remove(csv_partial, ignored);
-    std::filesystem::remove(json_partial, ignored);
-    throw Error("write_run: could not write " + files.csv.string() + " and " + files.json.string() + ": " +
-                error.what());
-  }
-  return files;
 }
 
 }  // namespace thetad::sim

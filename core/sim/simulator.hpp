@@ -2,7 +2,7 @@
 
 #include <cstdint>
 #include <filesystem>
-#include <iosfwd>
+#include <functional>
 #include <numbers>
 #include <string>
 #include <utility>
@@ -30,7 +30,8 @@ struct SimulationSettings {
   double dt = 1e-3;                 // RK4 step (s), A-18
   int controller_period_steps = 1;  // controller, noise and gust period as a multiple of dt
   int log_every = 1;                // log every k-th controller sample
-  double duration = 10.0;           // s; the run has round(duration / T_c) controller samples
+  bool keep_log = true;             // false: the summary alone (no RunLog rows)
+  double duration = 10.0;           // s, at most kMaxDuration; the run has round(duration / T_c) controller samples
   bool parameter_uncertainty = true;  // Table 1 parameters drawn once per run
   WindGustSettings wind_gust;
   NoiseSettings noise;
@@ -41,6 +42,12 @@ struct SimulationSettings {
   std::uint64_t seed = 1;
 
   double controller_period() const { return dt * controller_period_steps; }
+
+  // One simulated day: longer flights are a mistake in a file, not a study.
+  static constexpr double kMaxDuration = 86400.0;
+  // What one run's log and timing samples may hold in memory (bytes): 2 GiB, about 80 minutes of
+  // flight logged at every 1 kHz sample (55 columns). Beyond it simulate() refuses up front.
+  static constexpr double kMaxRunMemory = 2.0 * (1 << 30);
 
   // Every disturbance on: the paper's setting (spec §8.1).
   static SimulationSettings paper() { return {}; }
@@ -58,11 +65,9 @@ struct LogColumn {
 // The run log's columns, in order: the single definition that the CSV header, the row writer
 // and any reader of the files check against.
 const std::vector<LogColumn>& log_schema();
-// The CSV header line (without the newline): the schema's headers joined by commas.
-std::string csv_header();
 
-// The logged controller samples, row-major, log_schema().size() values per row. Sized for the
-// whole run before the first step.
+// The logged controller samples, row-major, log_schema().size() values per row. Reserved for the
+// whole run before the first step (none for a summary-only run).
 struct RunLog {
   std::vector<double> values;
 
@@ -121,23 +126,13 @@ struct RunResult {
 // measure; control() (timed); actuator noise; log; then controller_period_steps RK4 steps of dt
 // with the applied input held. Divergence (DivergenceLimits, non-finite state, command or rotor
 // speed, or a thetad::Error from the plant or the controller) ends the run with status diverged.
-// Throws thetad::Error for invalid settings or a wrongly sized x0.
+// Throws thetad::Error for invalid settings or a wrongly sized x0. `progress`, when given, is called
+// with the simulated time every kProgressSamples controller samples (progress displays).
+inline constexpr std::int64_t kProgressSamples = 100;
 RunResult simulate(ControlLaw& law, const ReferenceTrajectory& reference, const Eigen::VectorXd& x0,
                    const SimulationSettings& settings,
                    const heli::Parameters& nominal = heli::Parameters::nominal(),
-                   const heli::ModelOptions& options = heli::ModelOptions::resolved());
-
-void write_csv(const RunLog& log, std::ostream& out);
-// The summary as a JSON document (field names carry units).
-std::string summary_json(const RunSummary& summary);
-
-struct RunFiles {
-  std::filesystem::path csv;
-  std::filesystem::path json;
-};
-// Writes <directory>/<stem>.csv and <stem>.json. Both are written to temporary names in
-// `directory` and renamed only when both are complete; on any error neither final file is left
-// (nor a temporary one) and thetad::Error is thrown.
-RunFiles write_run(const RunResult& result, const std::filesystem::path& directory, const std::string& stem);
+                   const heli::ModelOptions& options = heli::ModelOptions::resolved(),
+                   const std::function<void(double t)>& progress = {});
 
 }  // namespace thetad::sim

@@ -11,6 +11,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "experiment/sha256.hpp"
 #include "tests/apps/run_thetad.hpp"
 #include "tests/scratch_directory.hpp"
 
@@ -108,6 +109,18 @@ TEST_F(Plot, DrawsEveryFigureAsValidPngAndSvg) {
   }
 }
 
+// Labels name the lines, and runs flown without timing (no compute column) still draw every figure.
+TEST_F(Plot, LabelledRunsWithoutTimingDrawEveryFigure) {
+  const Output compare = thetad(dir_, "compare --scenario " + (root_ / "climb.yaml").string() +
+                                          " --controllers hover=lqr,pid=example-pid --no-timing --log-every 5 --out " +
+                                          (dir_ / "untimed").string());
+  ASSERT_EQ(compare.status, 0) << compare.err;
+  const Output output = thetad(dir_, "plot --in " + (dir_ / "untimed").string() + " --out " + (dir_ / "figures").string());
+  ASSERT_EQ(output.status, 0) << output.err;
+  for (const auto& figure : kFigures) EXPECT_TRUE(fs::exists(dir_ / "figures" / (figure + ".png"))) << figure;
+  EXPECT_THAT(read(dir_ / "figures" / "position.svg"), HasSubstr("hover"));
+}
+
 TEST_F(Plot, MissingInputDirectoryIsAClearError) {
   const Output output = thetad(dir_, "plot --in " + (dir_ / "nowhere").string() + " --out " + (dir_ / "figures").string());
   EXPECT_EQ(output.status, 1);
@@ -123,13 +136,24 @@ TEST_F(Plot, DirectoryWithoutRunsIsAClearError) {
   expect_nothing_written();
 }
 
+// A log edited after its run no longer has the SHA-256 its result records.
+TEST_F(Plot, AnEditedLogIsRejected) {
+  replace_once(dir_ / "runs" / "example-pid.csv", ",compute_ns\n", "\n");
+  expect_rejected("example-pid.csv has another SHA-256 than the result records: the two files come from different runs");
+}
+
+// A log whose result vouches for it (another thetad version's pair) but whose columns differ.
 TEST_F(Plot, ColumnWithAnotherUnitIsRejected) {
+  const std::string old_digest = thetad::sha256_of_file(dir_ / "runs" / "lqr.csv");
   replace_once(dir_ / "runs" / "lqr.csv", "phi_rad,", "phi_deg,");
+  replace_once(dir_ / "runs" / "lqr.json", old_digest, thetad::sha256_of_file(dir_ / "runs" / "lqr.csv"));
   expect_rejected("lqr.csv: header does not match thetad's run-log schema: column 11 is 'phi_deg', expected 'phi_rad'");
 }
 
 TEST_F(Plot, MissingColumnIsRejected) {
+  const std::string old_digest = thetad::sha256_of_file(dir_ / "runs" / "example-pid.csv");
   replace_once(dir_ / "runs" / "example-pid.csv", ",compute_ns\n", "\n");
+  replace_once(dir_ / "runs" / "example-pid.json", old_digest, thetad::sha256_of_file(dir_ / "runs" / "example-pid.csv"));
   expect_rejected("'compute_ns' is missing");
 }
 

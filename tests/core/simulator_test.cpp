@@ -18,6 +18,8 @@
 #include "core/error.hpp"
 #include "core/helicopter/paper_weights.hpp"
 #include "core/helicopter/state.hpp"
+#include "experiment/result_json.hpp"
+#include "experiment/run_files.hpp"
 #include "tests/heap_counter.hpp"
 #include "tests/scratch_directory.hpp"
 
@@ -45,6 +47,26 @@ Eigen::VectorXd hover_trim_input() {
 }
 
 const FixedPosition kHoverPoint(Eigen::Vector3d(0.0, 0.0, -3.5));
+
+// The log's CSV header: the schema's columns, as the experiment library writes them.
+std::string csv_header() {
+  std::string header;
+  for (const auto& column : log_schema()) {
+    if (!header.empty()) header += ',';
+    header += column.header();
+  }
+  return header;
+}
+
+// A simulator run written by the experiment library's writer under the label `stem`.
+thetad::RunFiles write_run(const RunResult& flown, const fs::path& directory, const std::string& stem) {
+  thetad::RunResult result;
+  result.spec.label = stem;
+  result.spec.controller = flown.summary.controller;
+  result.summary = flown.summary;
+  result.log = flown.log;
+  return write_run_files(result, directory);
+}
 
 std::string read_file(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -134,9 +156,10 @@ TEST(Simulator, OpenLoopHoverFromPrintedTrimStaysNearTrimForOneSecond) {
 
 TEST_F(SimulatorFiles, SameSeedGivesByteIdenticalFilesAndAnotherSeedDiffers) {
   ConstantInput hold(hover_trim_input());
-  const RunFiles first = write_run(simulate(hold, kHoverPoint, hover_trim_state(), short_paper_run(42)), directory_, "a");
-  const RunFiles second = write_run(simulate(hold, kHoverPoint, hover_trim_state(), short_paper_run(42)), directory_, "b");
-  const RunFiles other = write_run(simulate(hold, kHoverPoint, hover_trim_state(), short_paper_run(43)), directory_, "c");
+  const auto run = [&](std::uint64_t seed, const char* folder) {
+    return write_run(simulate(hold, kHoverPoint, hover_trim_state(), short_paper_run(seed)), directory_ / folder, "run");
+  };
+  const thetad::RunFiles first = run(42, "a"), second = run(42, "b"), other = run(43, "c");
   EXPECT_EQ(read_file(first.csv), read_file(second.csv));
   EXPECT_EQ(read_file(first.json), read_file(second.json));
   EXPECT_NE(read_file(first.csv), read_file(other.csv));
@@ -182,7 +205,7 @@ TEST_F(SimulatorFiles, FallingThroughTheGroundDivergesWithReasonAndFiniteRows) {
   settings.duration = 3.0;
   const RunResult result = simulate(falling, kHoverPoint, x0, settings);
   expect_diverged_with_finite_rows(result, "ground penetration", 0.75, 1.0);
-  const RunFiles files = write_run(result, directory_, "fall");
+  const thetad::RunFiles files = write_run(result, directory_, "fall");
   const auto rows = read_csv_rows(files.csv);
   EXPECT_EQ(static_cast<Eigen::Index>(rows.size()), result.log.rows());
   for (const auto& row : rows)
@@ -239,7 +262,7 @@ TEST(Simulator, SummaryCarriesTheControllerCounters) {
   const RunResult result = simulate(counting, kHoverPoint, hover_trim_state(), settings);
   ASSERT_EQ(result.summary.controller_counters.size(), 1u);
   EXPECT_EQ(result.summary.controller_counters[0].second, 30.0);
-  const auto json = nlohmann::json::parse(summary_json(result.summary));
+  const auto json = nlohmann::json::parse(thetad::summary_json(result.summary).dump());
   EXPECT_EQ(json["controller_counters"]["samples_seen"], 30.0);
 }
 
@@ -288,15 +311,15 @@ TEST_F(SimulatorFiles, SummaryFieldsArePresentAndAgreeWithTheCsv) {
   settings.duration = 0.5;
   settings.seed = 77;
   const RunResult result = simulate(hold, kHoverPoint, hover_trim_state(), settings);
-  const RunFiles files = write_run(result, directory_, "summary");
+  const thetad::RunFiles files = write_run(result, directory_, "summary");
   EXPECT_EQ(directory_entries(), (std::vector<std::string>{"summary.csv", "summary.json"}));
 
   const auto json = nlohmann::json::parse(read_file(files.json));
-  for (const char* key : {"controller", "seed", "status", "reason", "end_time_s", "controller_samples",
+  for (const char* key : {"controller", "controller_name", "seed", "status", "reason", "end_time_s", "controller_samples",
                           "model_options", "parameter_factors", "settings", "tracking_error_m", "control_effort",
                           "cost", "compute_time_ns"})
     EXPECT_TRUE(json.contains(key)) << key;
-  EXPECT_EQ(json["controller"], "hold_trim");
+  EXPECT_EQ(json["controller_name"], "hold_trim");
   EXPECT_EQ(json["seed"], 77u);
   EXPECT_EQ(json["status"], "completed");
   EXPECT_EQ(json["reason"], "");
@@ -365,11 +388,13 @@ TEST_F(SimulatorFiles, FailedWriteLeavesNoFile) {
   settings.duration = 0.05;
   const RunResult result = simulate(hold, kHoverPoint, hover_trim_state(), settings);
 
-  EXPECT_THROW(write_run(result, directory_ / "missing", "run"), Error);
-  EXPECT_TRUE(directory_entries().empty());
+  std::ofstream(directory_ / "file") << "not a folder";
+  EXPECT_THROW(write_run(result, directory_ / "file" / "below", "run"), Error);
+  EXPECT_EQ(directory_entries(), std::vector<std::string>{"file"});
+  fs::remove(directory_ / "file");
 
-  // The JSON's final name is taken by a non-empty directory: the rename of the second file fails
-  // after the first has been renamed, and the first must go too.
+  // The JSON's final name is taken by a non-empty directory: the rename of the JSON (the last one)
+  // fails after the CSV's, and the CSV must go too.
   fs::create_directories(directory_ / "run.json" / "occupied");
   EXPECT_THROW(write_run(result, directory_, "run"), Error);
   EXPECT_EQ(directory_entries(), std::vector<std::string>{"run.json"});

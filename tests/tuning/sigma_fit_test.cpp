@@ -72,13 +72,12 @@ TEST(SigmaFit, ResidualIsBitIdenticalForAnyThreadCount) {
 // A few seconds of scenario I flown by the SDRE: the fit must not make the match worse.
 TEST(SigmaFit, TunedResidualOnARealRecordIsNoWorse) {
   const testing::HelicopterThetaD heli;
-  const Scenario scenario = load_scenario(THETAD_SOURCE_DIR "/scenarios/scenario-1.yaml");
-  sim::SimulationSettings settings = scenario.simulation_settings();
-  settings.duration = 3.0;
-  const auto sdre = ControllerRegistry::instance().make("sdre", YAML::Node(), ControllerContext{heli.model, heli.x0, 0.0});
-  const TuningRecord record = record_sdre_flight(dynamic_cast<const SdreController&>(*sdre), scenario.name,
-                                                 scenario.trajectory, scenario.initial_state, settings,
-                                                 scenario.model_options, 10, 2);
+  RunControls three_seconds;
+  three_seconds.duration = 3.0;
+  three_seconds.summary_only = true;
+  const Flight flight(THETAD_SOURCE_DIR "/scenarios/scenario-1.yaml", three_seconds);
+  const PreparedController sdre = flight.prepare({"sdre", "sdre", {}, {}});
+  const TuningRecord record = record_sdre_flight(flight, dynamic_cast<const SdreController&>(*sdre.controller), 10, 2);
   ASSERT_EQ(record.size(), 300);
   const SigmaMatch match(heli.make(3), record, 2);
   const FitResult fit = tuning::fit(match, FitOptions{});

@@ -1,0 +1,24 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "experiment/flight.hpp"
+#include "experiment/run_files.hpp"
+#include "experiment/run_result.hpp"
+
+namespace thetad {
+
+// The comparison table of several runs of one flight, one row per label: status, RMS and max
+// position error per axis, effort, cost J and the in-flight compute time per step (with a note
+// that it includes the simulation's noise: `thetad bench` measures the per-step cost).
+std::string comparison_table(const std::vector<RunResult>& runs);
+
+// comparison.json: the flight (scenario, seed, disturbances, provenance) and, per run in order,
+// its label, controller and result file (the result file names its log).
+nlohmann::ordered_json comparison_json(const Flight& flight, const std::vector<RunResult>& runs,
+                                       const std::vector<RunFiles>& files);
+
+}  // namespace thetad

@@ -1,0 +1,154 @@
+#include "experiment/controller_spec.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "controllers/registry.hpp"
+#include "core/error.hpp"
+#include "core/settings.hpp"
+
+namespace thetad {
+
+namespace {
+
+std::string known_controllers() {
+  std::string known;
+  for (const auto& name : ControllerRegistry::instance().names()) known += (known.empty() ? "" : ", ") + name;
+  return known;
+}
+
+bool registered(const std::string& name) {
+  const auto names = ControllerRegistry::instance().names();
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+// The block for `name` in a settings file; a null node when there is none.
+YAML::Node block_of(const YAML::Node& file, const std::string& name) {
+  return file.IsMap() && file[name] ? file[name] : YAML::Node();
+}
+
+}  // namespace
+
+YAML::Node load_settings_file(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw Error("cannot read settings file " + file.string() + ": " + std::strerror(errno));
+  std::ostringstream text;
+  text << in.rdbuf();
+  YAML::Node root;
+  try {
+    root = YAML::Load(text.str());
+  } catch (const YAML::Exception& error) {
+    std::ostringstream message;
+    message << file.string() << ":" << error.mark.line + 1 << ":" << error.mark.column + 1
+            << ": invalid YAML: " << error.msg;
+    throw Error(message.str());
+  }
+  if (!root.IsDefined() || root.IsNull()) return root;
+  if (!root.IsMap())
+    throw SettingsError("settings", "expected a map from controller name to its settings", root.Mark(), file.string());
+  for (const auto& item : root) {
+    const std::string name = item.first.Scalar();
+    if (!registered(name))
+      throw SettingsError(name, "unknown controller (known: " + known_controllers() + ")", item.first.Mark(),
+                          file.string());
+  }
+  return root;
+}
+
+void check_label(const std::string& label) {
+  const auto allowed = [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '.' || c == '_' ||
+           c == '+' || c == '-';
+  };
+  const bool valid = !label.empty() && label.size() <= 64 && label.front() != '.' && label.front() != '-' &&
+                     std::all_of(label.begin(), label.end(), allowed);
+  if (!valid)
+    throw Error("label '" + label + "': a label names files, so it must be 1-64 characters from A-Z a-z 0-9 . _ + - " +
+                "and not start with '.' or '-'");
+}
+
+void check_labels(const std::vector<ControllerSpec>& specs) {
+  for (auto it = specs.begin(); it != specs.end(); ++it) {
+    check_label(it->label);
+    const auto same = [&](const ControllerSpec& other) { return other.label == it->label; };
+    if (std::find_if(specs.begin(), it, same) != it)
+      throw Error("label '" + it->label + "' is used twice: give each controller its own (LABEL=NAME)");
+  }
+}
+
+ControllerSpec parse_controller_spec(const std::string& text, const YAML::Node& fallback,
+                                     const std::string& fallback_source) {
+  ControllerSpec spec;
+  std::string rest = text;
+  if (const auto equals = rest.find('='); equals != std::string::npos) {
+    spec.label = rest.substr(0, equals);
+    rest = rest.substr(equals + 1);
+  }
+  std::string file;
+  if (const auto colon = rest.find(':'); colon != std::string::npos) {
+    file = rest.substr(colon + 1);
+    rest = rest.substr(0, colon);
+    if (file.empty()) throw Error("controller '" + text + "': no settings file after ':'");
+  }
+  spec.controller = rest;
+  if (spec.label.empty()) spec.label = spec.controller;
+  if (!registered(spec.controller))
+    throw Error("controller '" + text + "': unknown controller '" + spec.controller + "' (known: " + known_controllers() + ")");
+  check_label(spec.label);
+  if (!file.empty()) {
+    const YAML::Node settings = load_settings_file(file);
+    if (block_of(settings, spec.controller).IsNull())
+      throw Error("controller '" + text + "': " + file + " has no block for '" + spec.controller + "'");
+    spec.settings = block_of(settings, spec.controller);
+    spec.settings_source = file;
+  } else {
+    spec.settings = block_of(fallback, spec.controller);
+    if (!spec.settings.IsNull()) spec.settings_source = fallback_source;
+  }
+  return spec;
+}
+
+std::vector<ControllerSpec> read_controller_specs(const YAML::Node& list, const std::string& source) {
+  return with_settings_source(source, [&] {
+    if (!list.IsSequence() || list.size() == 0)
+      throw SettingsError("controllers", "expected a non-empty list of {label, controller, settings}", list.Mark());
+    std::vector<ControllerSpec> specs;
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const std::string path = "controllers[" + std::to_string(i) + "]";
+      const Settings item(list[i], path);
+      item.allow_only({"label", "controller", "settings"});
+      if (!item.has("controller")) throw item.error("controller", "missing (required)");
+      ControllerSpec spec;
+      spec.controller = item.string("controller", "");
+      if (!registered(spec.controller))
+        throw item.error("controller", "unknown controller '" + spec.controller + "' (known: " + known_controllers() + ")");
+      spec.label = item.string("label", spec.controller);
+      try {
+        check_label(spec.label);
+      } catch (const Error& error) {
+        throw item.error("label", error.what());
+      }
+      const YAML::Node settings = list[i]["settings"];
+      if (settings && settings.IsScalar()) {
+        const std::filesystem::path file = std::filesystem::path(source).parent_path() / settings.Scalar();
+        const YAML::Node blocks = load_settings_file(file);
+        if (block_of(blocks, spec.controller).IsNull())
+          throw item.error("settings", file.string() + " has no block for '" + spec.controller + "'");
+        spec.settings = block_of(blocks, spec.controller);
+        spec.settings_source = file.string();
+      } else if (settings && !settings.IsNull()) {
+        if (!settings.IsMap()) throw item.error("settings", "expected a settings map or the name of a settings file");
+        spec.settings = settings;
+        spec.settings_source = source;
+      }
+      specs.push_back(std::move(spec));
+    }
+    check_labels(specs);
+    return specs;
+  });
+}
+
+}  // namespace thetad

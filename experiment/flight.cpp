@@ -1,0 +1,85 @@
+#include "experiment/flight.hpp"
+
+#include <chrono>
+#include <cstdio>
+
+#include "controllers/registry.hpp"
+#include "core/settings.hpp"
+#include "experiment/build_info.hpp"
+#include "experiment/scenario_files.hpp"
+#include "experiment/sha256.hpp"
+
+namespace thetad {
+
+namespace {
+
+Scenario load(const std::string& file_or_name) { return load_scenario(find_scenario(file_or_name)); }
+
+}  // namespace
+
+Flight::Flight(const std::string& scenario, const RunControls& controls)
+    : scenario_(load(scenario)),
+      settings_(scenario_.simulation_settings()),
+      model_(heli::Parameters::nominal(), scenario_.model_options) {
+  apply(controls, settings_);
+  provenance_.build = build_info();
+  provenance_.scenario_name = scenario_.name;
+  provenance_.scenario_file = scenario_.source;
+  provenance_.scenario_sha256 = sha256_of_file(scenario_.source);
+  provenance_.model_preset = scenario_.model_preset;
+  provenance_.model_options = scenario_.model_options.to_string();
+  provenance_.seed = settings_.seed;
+  provenance_.dt = settings_.dt;
+}
+
+std::string Flight::disturbances() const {
+  const auto on = [](bool value) { return value ? "on" : "off"; };
+  const sim::NoiseSettings& noise = settings_.noise;
+  const bool all = settings_.parameter_uncertainty && settings_.wind_gust.enabled && noise.measurement &&
+                   noise.actuator && noise.wind_component && noise.induced_velocity;
+  const bool none = !settings_.parameter_uncertainty && !settings_.wind_gust.enabled && !noise.measurement &&
+                    !noise.actuator && !noise.wind_component && !noise.induced_velocity;
+  if (all) return "all disturbances (the paper's setting)";
+  if (none) return "ideal (no uncertainty, noise or wind)";
+  char text[256];
+  std::snprintf(text, sizeof text,
+                "uncertainty %s, wind gust %s, measurement noise %s, actuator noise %s, wind noise %s, "
+                "induced-velocity noise %s",
+                on(settings_.parameter_uncertainty), on(settings_.wind_gust.enabled), on(noise.measurement),
+                on(noise.actuator), on(noise.wind_component), on(noise.induced_velocity));
+  return text;
+}
+
+PreparedController Flight::prepare(const ControllerSpec& spec) const {
+  const ControllerContext context{model_, scenario_.initial_state, 0.0};
+  auto make = [&] { return ControllerRegistry::instance().make(spec.controller, spec.settings, context); };
+  PreparedController prepared{spec, spec.settings_source.empty() ? make() : with_settings_source(spec.settings_source, make),
+                              spec.settings};
+  return prepared;
+}
+
+RunResult Flight::fly(PreparedController& prepared, Progress* progress, const std::string& heading) const {
+  RunResult result;
+  result.spec = prepared.spec;
+  result.settings = prepared.settings;
+  result.provenance = provenance_;
+  if (settings_.measure_compute_time) stamp_host_and_time(result.provenance);
+  if (progress) progress->start(heading.empty() ? prepared.spec.label + ":" : heading, settings_.duration);
+  const auto start = std::chrono::steady_clock::now();
+  const auto report = [progress](double t) { progress->update(t); };
+  sim::RunResult flown = sim::simulate(*prepared.controller, scenario_.trajectory, scenario_.initial_state, settings_,
+                                       heli::Parameters::nominal(), scenario_.model_options,
+                                       progress ? std::function<void(double)>(report) : std::function<void(double)>());
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.summary = std::move(flown.summary);
+  result.log = std::move(flown.log);
+  if (settings_.measure_compute_time) result.wall_seconds = wall;
+  if (progress) {
+    char outcome[160];
+    std::snprintf(outcome, sizeof outcome, "%s (%.1f s wall)", status_text(result.summary).c_str(), wall);
+    progress->finish(outcome);
+  }
+  return result;
+}
+
+}  // namespace thetad

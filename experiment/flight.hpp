@@ -1,0 +1,60 @@
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include <yaml-cpp/yaml.h>
+
+#include "controllers/controller.hpp"
+#include "core/helicopter/helicopter.hpp"
+#include "core/sim/simulator.hpp"
+#include "experiment/controller_spec.hpp"
+#include "experiment/progress.hpp"
+#include "experiment/provenance.hpp"
+#include "experiment/run_controls.hpp"
+#include "experiment/run_result.hpp"
+#include "scenarios/scenario.hpp"
+
+namespace thetad {
+
+// A controller built for a flight, with every setting as it was used.
+struct PreparedController {
+  ControllerSpec spec;
+  std::unique_ptr<Controller> controller;
+  YAML::Node settings;
+};
+
+// A scenario read and ready to fly, with the controllers' model: the one place where a scenario,
+// run controls and controller specs become results, for every front end. Everything that can be
+// wrong with the files is found while building it and preparing the controllers, before anything
+// flies or is written.
+class Flight {
+ public:
+  // `scenario`: a file, or the name of a shipped scenario (find_scenario).
+  explicit Flight(const std::string& scenario, const RunControls& controls = {});
+
+  const Scenario& scenario() const { return scenario_; }
+  const sim::SimulationSettings& settings() const { return settings_; }
+  // The controllers' model: nominal parameters, the scenario's model options, no wind.
+  const heli::Helicopter& model() const { return model_; }
+  // What produced a run of this flight, less the controller (and the host and time, stamped per run).
+  const Provenance& provenance() const { return provenance_; }
+  // "all disturbances (the paper's setting)", "ideal (...)", or the switches that differ.
+  std::string disturbances() const;
+
+  // The controller of `spec`, designed for the scenario's initial state. Errors name the settings
+  // file and field. The controller refers to model(): the Flight must outlive it.
+  PreparedController prepare(const ControllerSpec& spec) const;
+
+  // Flies `prepared` through the scenario (it is reset first), showing progress on `progress`
+  // under `heading` ("LABEL:" when empty).
+  RunResult fly(PreparedController& prepared, Progress* progress = nullptr, const std::string& heading = {}) const;
+
+ private:
+  Scenario scenario_;
+  sim::SimulationSettings settings_;
+  heli::Helicopter model_;
+  Provenance provenance_;
+};
+
+}  // namespace thetad

@@ -1,0 +1,75 @@
+#include "experiment/progress.hpp"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
+
+namespace thetad {
+
+Progress::Mode Progress::mode_for_stderr(bool quiet) {
+  if (quiet) return Mode::quiet;
+  return isatty(fileno(stderr)) == 1 && std::getenv("CI") == nullptr ? Mode::live : Mode::lines;
+}
+
+Progress::Progress(Mode mode) : mode_(mode), interval_(10.0) {
+  if (const char* text = std::getenv("THETAD_PROGRESS_INTERVAL")) {
+    char* end = nullptr;
+    const double seconds = std::strtod(text, &end);
+    if (end != text && seconds >= 0.0) interval_ = std::chrono::duration<double>(seconds);
+  }
+}
+
+std::string format_duration(double seconds) {
+  char text[48];
+  if (seconds < 60.0) {
+    std::snprintf(text, sizeof text, "%.0f s", seconds);
+  } else if (seconds < 3600.0) {
+    std::snprintf(text, sizeof text, "%d min %02d s", static_cast<int>(seconds / 60.0), static_cast<int>(seconds) % 60);
+  } else {
+    std::snprintf(text, sizeof text, "%d h %02d min", static_cast<int>(seconds / 3600.0),
+                  static_cast<int>(seconds / 60.0) % 60);
+  }
+  return text;
+}
+
+std::string Progress::status(double done) const {
+  const double wall = std::chrono::duration<double>(Clock::now() - started_).count();
+  const double rate = wall > 0.0 ? done / wall : 0.0;  // simulated seconds per wall second
+  char text[160];
+  if (rate > 0.0) {
+    std::snprintf(text, sizeof text, "%3.0f %% (%.1f of %g s simulated, %.2fx real time, ETA %s)",
+                  100.0 * done / total_, done, total_, rate, format_duration((total_ - done) / rate).c_str());
+  } else {
+    std::snprintf(text, sizeof text, "%3.0f %% (%.1f of %g s simulated)", 100.0 * done / total_, done, total_);
+  }
+  return text;
+}
+
+void Progress::start(const std::string& label, double total) {
+  label_ = label;
+  total_ = total;
+  started_ = last_shown_ = Clock::now();
+  if (mode_ == Mode::lines) std::fprintf(stderr, "%s flying (%g s simulated)\n", label_.c_str(), total_);
+}
+
+void Progress::update(double done) {
+  if (mode_ == Mode::quiet) return;
+  const auto now = Clock::now();
+  const auto since = now - last_shown_;
+  if (mode_ == Mode::live && since >= std::chrono::milliseconds(200)) {
+    std::fprintf(stderr, "\r\033[K%s %s", label_.c_str(), status(done).c_str());
+    last_shown_ = now;
+  } else if (mode_ == Mode::lines && since >= interval_) {
+    std::fprintf(stderr, "%s %s\n", label_.c_str(), status(done).c_str());
+    last_shown_ = now;
+  }
+}
+
+void Progress::finish(const std::string& outcome) {
+  if (mode_ == Mode::quiet) return;
+  if (mode_ == Mode::live) std::fprintf(stderr, "\r\033[K");
+  std::fprintf(stderr, "%s %s\n", label_.c_str(), outcome.c_str());
+}
+
+}  // namespace thetad

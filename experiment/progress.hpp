@@ -1,0 +1,42 @@
+#pragma once
+
+#include <chrono>
+#include <string>
+
+namespace thetad {
+
+// How far a flight has got, on stderr, with its rate and an ETA. On a terminal a person watches
+// it is one line redrawn in place; anywhere else (CI set, a pipe, a cluster job's log) it is a
+// plain line every `interval` (10 s; THETAD_PROGRESS_INTERVAL=SECONDS changes it), so a long run
+// shows life without filling the log.
+class Progress {
+ public:
+  enum class Mode { quiet, live, lines };
+  // live when stderr is a terminal and CI is unset, lines otherwise; quiet when asked for.
+  static Mode mode_for_stderr(bool quiet);
+
+  explicit Progress(Mode mode);
+
+  // One task of `total` units (simulated seconds), shown under `label`.
+  void start(const std::string& label, double total);
+  void update(double done);
+  // Ends the task's display with `outcome` ("completed (12.3 s wall)").
+  void finish(const std::string& outcome);
+
+  Mode mode() const { return mode_; }
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  std::string status(double done) const;
+
+  Mode mode_;
+  std::chrono::duration<double> interval_;
+  std::string label_;
+  double total_ = 0.0;
+  Clock::time_point started_, last_shown_;
+};
+
+// "2 min 05 s", "43 s".
+std::string format_duration(double seconds);
+
+}  // namespace thetad

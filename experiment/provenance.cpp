@@ -1,0 +1,39 @@
+#include "experiment/provenance.hpp"
+
+#include <unistd.h>
+
+#include <array>
+#include <ctime>
+
+namespace thetad {
+
+nlohmann::ordered_json to_json(const Provenance& p) {
+  nlohmann::ordered_json j;
+  j["thetad_version"] = p.build.version;
+  j["git_revision"] = p.build.git_revision;
+  j["build_type"] = p.build.build_type;
+  j["compiler"] = p.build.compiler;
+  j["compiler_flags"] = p.build.flags;
+  j["eigen"] = p.build.eigen;
+  j["lapack"] = p.build.lapack;
+  j["scenario"] = {{"name", p.scenario_name}, {"file", p.scenario_file}, {"sha256", p.scenario_sha256}};
+  j["model"] = {{"preset", p.model_preset}, {"options", p.model_options}};
+  j["seed"] = p.seed;
+  j["dt_s"] = p.dt;
+  if (!p.host.empty()) j["host"] = p.host;
+  if (!p.start_time.empty()) j["start_time_utc"] = p.start_time;
+  return j;
+}
+
+void stamp_host_and_time(Provenance& provenance) {
+  std::array<char, 256> host{};
+  if (gethostname(host.data(), host.size() - 1) == 0) provenance.host = host.data();
+  const std::time_t now = std::time(nullptr);
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  std::array<char, 32> text{};
+  std::strftime(text.data(), text.size(), "%Y-%m-%dT%H:%M:%SZ", &utc);
+  provenance.start_time = text.data();
+}
+
+}  // namespace thetad

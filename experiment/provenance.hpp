@@ -1,0 +1,33 @@
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "experiment/build_info.hpp"
+
+namespace thetad {
+
+// Everything besides the controller that decides what a run computed, and who computed it when:
+// a result file carries it so that it can be told apart from another and flown again
+// (`thetad run --replay`).
+struct Provenance {
+  BuildInfo build;
+  std::string scenario_name;
+  std::string scenario_file;    // as given (absolute when it was found by name)
+  std::string scenario_sha256;  // of the file's bytes
+  std::string model_preset;     // "resolved" or "paper"
+  std::string model_options;    // every switch, heli::ModelOptions::to_string()
+  std::uint64_t seed = 0;
+  double dt = 0.0;
+  // Wall-clock facts: empty when the run was asked for byte-identical output (no timing).
+  std::string host;
+  std::string start_time;  // UTC, ISO 8601
+};
+
+nlohmann::ordered_json to_json(const Provenance& provenance);
+// The host name and the current UTC time, filled into `provenance`.
+void stamp_host_and_time(Provenance& provenance);
+
+}  // namespace thetad

@@ -1,0 +1,23 @@
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "experiment/progress.hpp"
+#include "experiment/run_result.hpp"
+
+namespace thetad {
+
+struct Replay {
+  RunResult result;                      // the run flown again
+  std::vector<std::string> differences;  // summary fields that differ from the recorded ones; empty: agrees
+};
+
+// Flies again exactly the run a result file describes, from what it says alone: the scenario file
+// (which must still have the recorded SHA-256), the controller with its recorded settings, the
+// seed, dt, duration, logging and disturbance switches. Compares every summary figure but the
+// wall-clock ones. Throws thetad::Error when the file cannot be replayed (and says why).
+Replay replay(const std::filesystem::path& result_file, Progress* progress = nullptr);
+
+}  // namespace thetad

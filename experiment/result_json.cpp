@@ -1,0 +1,160 @@
+#include "experiment/result_json.hpp"
+
+#include <string_view>
+
+namespace thetad {
+
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+const char* to_string(sim::WindGustSettings::Model model) {
+  return model == sim::WindGustSettings::Model::held_white ? "held_white" : "gauss_markov";
+}
+
+const char* to_string(sim::MeasurementNoiseOn on) {
+  return on == sim::MeasurementNoiseOn::feedback_signal ? "feedback_signal" : "absolute_state";
+}
+
+Json settings_json(const sim::SimulationSettings& s) {
+  Json j;
+  j["dt_s"] = s.dt;
+  j["controller_period_steps"] = s.controller_period_steps;
+  j["controller_period_s"] = s.controller_period();
+  j["log_every"] = s.log_every;
+  j["keep_log"] = s.keep_log;
+  j["duration_s"] = s.duration;
+  j["parameter_uncertainty"] = s.parameter_uncertainty;
+  j["wind_gust"] = {{"enabled", s.wind_gust.enabled},
+                    {"model", to_string(s.wind_gust.model)},
+                    {"sigma_m_per_s", s.wind_gust.sigma},
+                    {"correlation_time_s", s.wind_gust.correlation_time}};
+  j["noise"] = {{"measurement", s.noise.measurement},
+                {"measurement_on", to_string(s.noise.measurement_on)},
+                {"actuator", s.noise.actuator},
+                {"wind_component", s.noise.wind_component},
+                {"induced_velocity", s.noise.induced_velocity}};
+  j["divergence_limits"] = {{"max_attitude_rad", s.limits.max_attitude},
+                            {"max_body_rate_rad_per_s", s.limits.max_body_rate},
+                            {"max_speed_m_per_s", s.limits.max_speed},
+                            {"max_ground_penetration_m", s.limits.max_ground_penetration}};
+  j["measure_compute_time"] = s.measure_compute_time;
+  return j;
+}
+
+}  // namespace
+
+std::string status_text(const sim::RunSummary& summary) {
+  if (summary.status == sim::RunStatus::completed) return "completed";
+  char text[64];
+  std::snprintf(text, sizeof text, "diverged at %.3f s", summary.end_time);
+  return text;
+}
+
+Json summary_json(const sim::RunSummary& summary) {
+  const auto vector3 = [](const Eigen::Vector3d& v) { return Json::array({v.x(), v.y(), v.z()}); };
+  Json j;
+  j["controller_name"] = summary.controller;
+  j["seed"] = summary.settings.seed;
+  j["status"] = summary.status == sim::RunStatus::completed ? "completed" : "diverged";
+  j["reason"] = summary.reason;
+  j["end_time_s"] = summary.end_time;
+  j["controller_samples"] = summary.controller_samples;
+  j["model_options"] = summary.model_options;
+  Json factors = Json::object();
+  for (const auto& [name, factor] : summary.parameter_factors) factors[name] = factor;
+  j["parameter_factors"] = factors;
+  Json counters = Json::object();
+  for (const auto& [name, count] : summary.controller_counters) counters[name] = count;
+  j["controller_counters"] = counters;
+  j["settings"] = settings_json(summary.settings);
+  j["tracking_error_m"] = {{"axes", {"x", "y", "z"}},
+                           {"rms", vector3(summary.rms_tracking_error)},
+                           {"max", vector3(summary.max_tracking_error)}};
+  Json effort;
+  effort["definition"] = "RMS of the commanded input per channel over the controller samples";
+  // The commanded-input columns of the log, without their "cmd_" prefix, name the channels.
+  Eigen::Index channel = 0;
+  for (const auto& column : sim::log_schema()) {
+    if (column.name.rfind("cmd_", 0) == 0) effort["rms"][column.header().substr(4)] = summary.command_rms[channel++];
+  }
+  j["control_effort"] = effort;
+  j["cost"] = {{"definition",
+                "J = 1/2 sum_k (V_track' Q V_track + u_cmd' R u_cmd) T_c, Eq. 32 with Q, R of Eqs. 33-34, "
+                "true V_track"},
+               {"J", summary.cost}};
+  if (summary.settings.measure_compute_time) {
+    j["compute_time_ns"] = {{"note", "wall time of each control() call inside the flight, with the simulation "
+                                     "around it: noisy; thetad bench measures the per-step cost"},
+                            {"mean", summary.compute_ns_mean},
+                            {"median", summary.compute_ns_median},
+                            {"p99", summary.compute_ns_p99}};
+  }
+  return j;
+}
+
+Json result_json(const RunResult& result, const LogFile* log) {
+  Json j;
+  j["format"] = kRunFormat;
+  j["label"] = result.spec.label;
+  j["controller"] = result.spec.controller;
+  j.update(summary_json(result.summary));
+  j["controller_settings"] = yaml_to_json(result.settings);
+  j["settings_source"] = result.spec.settings_source;
+  if (log) {
+    j["log"] = {{"csv", log->file}, {"sha256", log->sha256}, {"rows", log->rows}};
+  } else {
+    j["log"] = nullptr;
+  }
+  j["provenance"] = to_json(result.provenance);
+  if (result.summary.settings.measure_compute_time) j["wall_seconds"] = result.wall_seconds;
+  return j;
+}
+
+Json yaml_to_json(const YAML::Node& node) {
+  switch (node.Type()) {
+    case YAML::NodeType::Map: {
+      Json j = Json::object();
+      for (const auto& item : node) j[item.first.Scalar()] = yaml_to_json(item.second);
+      return j;
+    }
+    case YAML::NodeType::Sequence: {
+      Json j = Json::array();
+      for (const auto& item : node) j.push_back(yaml_to_json(item));
+      return j;
+    }
+    case YAML::NodeType::Scalar: {
+      const std::string& text = node.Scalar();
+      if (text == "true" || text == "false") return text == "true";
+      long long integer = 0;
+      double number = 0.0;
+      if (YAML::convert<long long>::decode(node, integer) && std::to_string(integer) == text) return integer;
+      if (YAML::convert<double>::decode(node, number)) return number;
+      return text;
+    }
+    case YAML::NodeType::Null:
+    case YAML::NodeType::Undefined:
+      break;
+  }
+  return nullptr;
+}
+
+YAML::Node json_to_yaml(const Json& json) {
+  if (json.is_object()) {
+    YAML::Node node(YAML::NodeType::Map);
+    for (const auto& [key, value] : json.items()) node[key] = json_to_yaml(value);
+    return node;
+  }
+  if (json.is_array()) {
+    YAML::Node node(YAML::NodeType::Sequence);
+    for (const auto& value : json) node.push_back(json_to_yaml(value));
+    return node;
+  }
+  if (json.is_boolean()) return YAML::Node(json.get<bool>());
+  if (json.is_number_integer()) return YAML::Node(json.get<long long>());
+  if (json.is_number()) return YAML::Node(json.get<double>());
+  if (json.is_string()) return YAML::Node(json.get<std::string>());
+  return YAML::Node(YAML::NodeType::Null);
+}
+
+}  // namespace thetad

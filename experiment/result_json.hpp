@@ -1,0 +1,35 @@
+#pragma once
+
+#include <string>
+
+#include <nlohmann/json.hpp>
+#include <yaml-cpp/yaml.h>
+
+#include "core/sim/simulator.hpp"
+#include "experiment/run_result.hpp"
+
+namespace thetad {
+
+// The run files' JSON: what a result *is* on disk. Field names carry units.
+
+// The summary (status, errors, effort, cost, timing unless it was not measured, the simulation
+// settings).
+nlohmann::ordered_json summary_json(const sim::RunSummary& summary);
+
+// The whole result: {"format", "label", "controller" (registered name), the summary's fields,
+// "controller_settings", "settings_source", "log" (the CSV's file name, SHA-256, rows and columns;
+// null when summary-only), "provenance", "wall_seconds" (with timing only)}.
+inline constexpr const char* kRunFormat = "thetad-run-1";
+struct LogFile {
+  std::string file;    // name in the result's folder
+  std::string sha256;
+  long long rows = 0;
+};
+nlohmann::ordered_json result_json(const RunResult& result, const LogFile* log);
+
+// A YAML tree as JSON: scalars that read as numbers or booleans become numbers or booleans.
+nlohmann::ordered_json yaml_to_json(const YAML::Node& node);
+// And back, for rebuilding a controller from a result file.
+YAML::Node json_to_yaml(const nlohmann::ordered_json& json);
+
+}  // namespace thetad

@@ -1,0 +1,63 @@
+#include "experiment/run_controls.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "core/error.hpp"
+
+namespace thetad {
+
+namespace {
+
+std::string seconds(double value) {
+  std::ostringstream text;
+  text.precision(12);
+  text << value << " s";
+  return text.str();
+}
+
+}  // namespace
+
+void apply(const RunControls& controls, sim::SimulationSettings& settings) {
+  if (controls.duration) {
+    const double duration = *controls.duration;
+    if (!(duration > 0.0) || !(duration <= sim::SimulationSettings::kMaxDuration))
+      throw Error("duration " + seconds(duration) + ": must be > 0 and at most 86400 s (one simulated day)");
+    settings.duration = duration;
+  }
+  if (controls.dt) {
+    const double dt = *controls.dt, period = settings.controller_period();
+    if (!(dt > 0.0) || !std::isfinite(dt)) throw Error("dt " + seconds(dt) + ": must be > 0");
+    const double steps = std::round(period / dt);
+    if (steps < 1.0 || std::abs(steps * dt - period) > 1e-9 * period)
+      throw Error("dt " + seconds(dt) + " does not divide the controller period " + seconds(period) +
+                  ": the controller samples every " + seconds(period) +
+                  " with zero-order hold, so the plant step must be that period divided by a whole number");
+    settings.dt = period / steps;
+    settings.controller_period_steps = static_cast<int>(steps);
+  }
+  if (controls.log_every) {
+    if (*controls.log_every < 1) throw Error("log_every " + std::to_string(*controls.log_every) + ": must be >= 1");
+    settings.log_every = *controls.log_every;
+  }
+  if (controls.seed) settings.seed = *controls.seed;
+  if (controls.ideal) {
+    const sim::SimulationSettings ideal = sim::SimulationSettings::ideal();
+    settings.parameter_uncertainty = ideal.parameter_uncertainty;
+    settings.wind_gust.enabled = ideal.wind_gust.enabled;
+    settings.noise = ideal.noise;
+  }
+  const auto set = [](const std::optional<bool>& given, bool& value) {
+    if (given) value = *given;
+  };
+  set(controls.parameter_uncertainty, settings.parameter_uncertainty);
+  set(controls.wind_gust, settings.wind_gust.enabled);
+  set(controls.measurement_noise, settings.noise.measurement);
+  set(controls.actuator_noise, settings.noise.actuator);
+  set(controls.wind_noise, settings.noise.wind_component);
+  set(controls.induced_velocity_noise, settings.noise.induced_velocity);
+  if (controls.summary_only) settings.keep_log = !*controls.summary_only;
+  if (controls.timing) settings.measure_compute_time = *controls.timing;
+}
+
+}  // namespace thetad

@@ -1,0 +1,224 @@
+#include "experiment/run_files.hpp"
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <charconv>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "core/atomic_file.hpp"
+#include "core/error.hpp"
+#include "experiment/result_json.hpp"
+#include "experiment/sha256.hpp"
+
+namespace thetad {
+
+namespace {
+
+namespace fs = std::filesystem;
+using Json = nlohmann::ordered_json;
+
+std::string header_line(const std::vector<sim::LogColumn>& columns) {
+  std::string header;
+  for (const auto& column : columns) {
+    if (!header.empty()) header += ',';
+    header += column.header();
+  }
+  return header;
+}
+
+// Writes the log as CSV into `out` and returns the SHA-256 of what it wrote. Shortest round-trip
+// text: exact, and the same bytes for the same double on every run.
+std::string write_csv(const sim::RunLog& log, bool timing, std::ofstream& out) {
+  Sha256 digest;
+  std::string chunk = header_line(log_columns(timing)) + "\n";
+  const std::size_t schema = sim::log_schema().size(), written = log_columns(timing).size();
+  char number[32];
+  const auto flush = [&] {
+    digest.update(chunk);
+    out.write(chunk.data(), static_cast<std::streamsize>(chunk.size()));
+    chunk.clear();
+  };
+  for (std::size_t i = 0; i < log.values.size(); ++i) {
+    const std::size_t column = i % schema;
+    if (column >= written) continue;
+    const auto [end, status] = std::to_chars(number, number + sizeof number, log.values[i]);
+    chunk.append(number, end);
+    chunk.push_back(column + 1 == written ? '\n' : ',');
+    if (chunk.size() > (1u << 20)) flush();
+  }
+  flush();
+  return digest.hex();
+}
+
+// The CSV's header must name `columns` in order; the error names the first difference, so that a
+// log of another thetad version is recognized as such.
+void check_header(const fs::path& csv, const std::vector<sim::LogColumn>& columns) {
+  std::ifstream in(csv, std::ios::binary);
+  std::string line;
+  std::getline(in, line);
+  if (line == header_line(columns)) return;
+  std::vector<std::string> found;
+  std::istringstream fields(line);
+  for (std::string field; std::getline(fields, field, ',');) found.push_back(field);
+  const std::string where = csv.string() + ": header does not match thetad's run-log schema: ";
+  for (std::size_t i = 0; i < std::max(found.size(), columns.size()); ++i) {
+    const std::string column = std::to_string(i + 1);
+    if (i >= found.size()) throw Error(where + "column " + column + " '" + columns[i].header() + "' is missing");
+    if (i >= columns.size()) throw Error(where + "unexpected column " + column + " '" + found[i] + "'");
+    if (found[i] != columns[i].header())
+      throw Error(where + "column " + column + " is '" + found[i] + "', expected '" + columns[i].header() + "'");
+  }
+}
+
+class FolderLock {
+ public:
+  explicit FolderLock(const fs::path& folder) : descriptor_(open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC)) {
+    if (descriptor_ >= 0 && flock(descriptor_, LOCK_EX) == 0) return;
+    const std::string reason = std::strerror(errno);
+    if (descriptor_ >= 0) close(descriptor_);
+    throw Error("cannot lock " + folder.string() + " to write a result: " + reason);
+  }
+  ~FolderLock() {
+    if (descriptor_ >= 0) close(descriptor_);  // releases the lock
+  }
+  FolderLock(const FolderLock&) = delete;
+  FolderLock& operator=(const FolderLock&) = delete;
+
+ private:
+  int descriptor_;
+};
+
+Json read_json(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw Error("cannot read " + file.string() + ": " + std::strerror(errno));
+  std::ostringstream text;
+  text << in.rdbuf();
+  try {
+    return Json::parse(text.str());
+  } catch (const Json::parse_error& error) {
+    throw Error(file.string() + ": not valid JSON: " + error.what());
+  }
+}
+
+}  // namespace
+
+std::vector<sim::LogColumn> log_columns(bool timing) {
+  std::vector<sim::LogColumn> columns = sim::log_schema();
+  if (!timing) columns.pop_back();  // the schema ends with the control step's wall time
+  return columns;
+}
+
+void prepare_output_folder(const fs::path& folder) {
+  std::error_code error;
+  fs::create_directories(folder, error);
+  if (error) throw Error("--out " + folder.string() + ": cannot create the folder: " + error.message());
+  if (!fs::is_directory(folder)) throw Error("--out " + folder.string() + ": not a folder");
+  const PartialFile probe(folder / "write-test");
+  std::ofstream out(probe.path(), std::ios::binary);
+  if (!out) throw Error("--out " + folder.string() + ": cannot write there: " + std::strerror(errno));
+}
+
+RunFiles write_run_files(const RunResult& result, const fs::path& folder) {
+  const std::string& label = result.spec.label;
+  const bool timing = result.summary.settings.measure_compute_time;
+  RunFiles files{{}, folder / (label + ".json")};
+  std::error_code created;
+  fs::create_directories(folder, created);
+  if (created) throw Error("cannot create " + folder.string() + ": " + created.message());
+  std::optional<PartialFile> csv;
+  LogFile log;
+  if (result.summary.settings.keep_log) {
+    files.csv = folder / (label + ".csv");
+    csv.emplace(files.csv);
+    std::ofstream out(csv->path(), std::ios::binary | std::ios::trunc);
+    if (!out) throw Error("cannot write " + files.csv.string() + ": " + std::strerror(errno));
+    log = {files.csv.filename().string(), write_csv(result.log, timing, out), result.log.rows()};
+    out.close();
+    if (!out) throw Error("writing " + files.csv.string() + " failed (disk full or file too large?)");
+  }
+  PartialFile json(files.json);
+  {
+    std::ofstream out(json.path(), std::ios::binary | std::ios::trunc);
+    if (!out) throw Error("cannot write " + files.json.string() + ": " + std::strerror(errno));
+    out << result_json(result, csv ? &log : nullptr).dump(2) << '\n';
+    out.close();
+    if (!out) throw Error("writing " + files.json.string() + " failed (disk full or file too large?)");
+  }
+  // One commit per folder at a time: two thetad processes writing one label into one folder leave
+  // the pair of one of them, never the log of one beside the result of the other.
+  const FolderLock lock(folder);
+  if (csv) csv->commit();
+  try {
+    json.commit();
+  } catch (const Error&) {
+    // A log whose result could not be committed must not stand alone under the final name.
+    std::error_code ignored;
+    fs::remove(files.csv, ignored);
+    throw;
+  }
+  if (!csv) {
+    // A log left by an earlier run under this label would sit beside a result that does not name it.
+    std::error_code ignored;
+    fs::remove(folder / (label + ".csv"), ignored);
+  }
+  return files;
+}
+
+StoredRun read_run_files(const fs::path& json_file) {
+  StoredRun run;
+  run.json_file = json_file;
+  run.result = read_json(json_file);
+  const std::string where = json_file.string() + ": ";
+  if (!run.result.is_object() || run.result.value("format", "") != kRunFormat)
+    throw Error(where + "not a thetad run result (format '" + std::string(kRunFormat) +
+                "'; results of an older thetad must be flown again)");
+  run.label = run.result.value("label", "");
+  const Json& log = run.result["log"];
+  if (log.is_null()) return run;
+  const std::string csv_name = log.value("csv", "");
+  run.csv_file = json_file.parent_path() / csv_name;
+  if (csv_name.empty() || !fs::exists(run.csv_file))
+    throw Error(where + "its log " + run.csv_file.string() + " is missing");
+  if (sha256_of_file(run.csv_file) != log.value("sha256", ""))
+    throw Error(where + "its log " + run.csv_file.string() +
+                " has another SHA-256 than the result records: the two files come from different runs");
+  const bool timing = run.result.at("settings").at("measure_compute_time").get<bool>();
+  run.columns = log_columns(timing);
+  check_header(run.csv_file, run.columns);
+  return run;
+}
+
+std::vector<StoredRun> read_result_folder(const fs::path& folder) {
+  if (!fs::is_directory(folder)) throw Error(folder.string() + ": no such directory");
+  std::vector<StoredRun> runs;
+  const fs::path comparison = folder / "comparison.json";
+  if (fs::exists(comparison)) {
+    const Json j = read_json(comparison);
+    try {
+      for (const auto& run : j.at("runs")) runs.push_back(read_run_files(folder / run.at("json").get<std::string>()));
+    } catch (const Json::exception& error) {
+      throw Error(comparison.string() + ": not a thetad comparison: " + error.what());
+    }
+    return runs;
+  }
+  std::vector<fs::path> files;
+  for (const auto& entry : fs::directory_iterator(folder)) {
+    if (entry.path().extension() != ".json" || entry.path().filename().string().front() == '.') continue;
+    const Json j = read_json(entry.path());
+    if (j.is_object() && j.value("format", "") == kRunFormat) files.push_back(entry.path());
+  }
+  std::sort(files.begin(), files.end());
+  for (const auto& file : files) runs.push_back(read_run_files(file));
+  if (runs.empty())
+    throw Error(folder.string() + ": no runs (expected the comparison.json of thetad compare or the result files of "
+                                  "thetad run)");
+  return runs;
+}
+
+}  // namespace thetad

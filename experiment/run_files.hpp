@@ -1,0 +1,51 @@
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/sim/simulator.hpp"
+#include "experiment/run_result.hpp"
+
+namespace thetad {
+
+// The log's columns as written: sim::log_schema(), without the wall-clock column when the run
+// measured no time (so two runs with one seed give the same bytes).
+std::vector<sim::LogColumn> log_columns(bool timing);
+
+// Creates `folder` if needed and checks that a file can be written in it, so that a typo or a
+// read-only folder is found before a flight, not after. Throws thetad::Error naming the folder.
+void prepare_output_folder(const std::filesystem::path& folder);
+
+struct RunFiles {
+  std::filesystem::path csv;  // empty for a summary-only run
+  std::filesystem::path json;
+};
+
+// Writes (creating `folder` if needed) <folder>/<label>.csv (the log; not for a summary-only run) and <folder>/<label>.json (the
+// result, kRunFormat). Both are written under temporary names, then renamed CSV first and JSON
+// last: the JSON names its CSV with the CSV's SHA-256, so a reader can tell a pair that does not
+// belong together (a kill between the renames) and trusts a CSV only through its JSON. Throws
+// thetad::Error naming the file; no temporary file is left behind.
+RunFiles write_run_files(const RunResult& result, const std::filesystem::path& folder);
+
+// A result read back: the JSON, and its CSV checked against it.
+struct StoredRun {
+  std::string label;
+  std::filesystem::path json_file;
+  std::filesystem::path csv_file;  // empty for a summary-only run
+  nlohmann::ordered_json result;
+  std::vector<sim::LogColumn> columns;  // of the CSV
+};
+
+// Reads <label>.json and checks its format and, when it names a log, that the CSV exists, has that
+// SHA-256 and the header of log_columns(). Throws thetad::Error naming the file and the reason.
+StoredRun read_run_files(const std::filesystem::path& json_file);
+
+// Every run in `folder`: through its comparison.json (its order) when there is one, else every
+// <label>.json of format kRunFormat in name order. Throws thetad::Error when there is none.
+std::vector<StoredRun> read_result_folder(const std::filesystem::path& folder);
+
+}  // namespace thetad

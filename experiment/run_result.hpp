@@ -1,0 +1,30 @@
+#pragma once
+
+#include <string>
+
+#include <yaml-cpp/yaml.h>
+
+#include "core/sim/simulator.hpp"
+#include "experiment/controller_spec.hpp"
+#include "experiment/provenance.hpp"
+
+namespace thetad {
+
+// One flight as every front end reports it: the controller as asked for (spec) and as built
+// (every setting with the value used), the summary, the log unless the run was summary-only, and
+// what produced it.
+struct RunResult {
+  ControllerSpec spec;
+  YAML::Node settings;  // resolved: every field of the controller's settings, defaults included
+  sim::RunSummary summary;
+  sim::RunLog log;      // empty when summary-only
+  Provenance provenance;
+  double wall_seconds = 0.0;  // of the flight; 0 without timing
+
+  bool completed() const { return summary.status == sim::RunStatus::completed; }
+};
+
+// "completed" or "diverged at 16.200 s".
+std::string status_text(const sim::RunSummary& summary);
+
+}  // namespace thetad

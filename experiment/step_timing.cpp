@@ -1,0 +1,191 @@
+#include "experiment/step_timing.hpp"
+
+#include <sched.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+
+#include "core/error.hpp"
+
+namespace thetad {
+
+namespace {
+
+// Flies like the wrapped controller and keeps what every `every`-th control() call received.
+class SampleRecorder final : public Controller {
+ public:
+  SampleRecorder(std::unique_ptr<Controller> inner, int every, RecordedSamples& samples)
+      : inner_(std::move(inner)), every_(every), samples_(&samples) {}
+
+  std::string name() const override { return inner_->name(); }
+  std::unique_ptr<Controller> clone() const override {
+    return std::make_unique<SampleRecorder>(inner_->clone(), every_, *samples_);
+  }
+  void reset(const Eigen::VectorXd& x0, double t0) override {
+    inner_->reset(x0, t0);
+    count_ = 0;
+  }
+  void control(double t, const Eigen::Ref<const Eigen::VectorXd>& measured_state, const Reference& reference,
+               Eigen::Ref<Eigen::VectorXd> u) override {
+    if (count_++ % every_ == 0) {
+      samples_->time.push_back(t);
+      samples_->measured.emplace_back(measured_state);
+      samples_->reference.push_back(reference);
+    }
+    inner_->control(t, measured_state, reference, u);
+  }
+
+ private:
+  std::unique_ptr<Controller> inner_;
+  int every_;
+  RecordedSamples* samples_;
+  long count_ = 0;
+};
+
+// Nearest rank on sorted values.
+double quantile(const std::vector<double>& sorted, double q) {
+  const auto rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(sorted.size())));
+  return sorted[std::clamp<std::size_t>(rank, 1, sorted.size()) - 1];
+}
+
+int pin(int requested) {
+  if (requested == -2) return -1;
+  cpu_set_t allowed;
+  CPU_ZERO(&allowed);
+  if (sched_getaffinity(0, sizeof allowed, &allowed) != 0) return -1;
+  int cpu = requested;
+  if (cpu == -1) {
+    for (int c = CPU_SETSIZE - 1; c >= 0 && cpu < 0; --c)
+      if (CPU_ISSET(c, &allowed)) cpu = c;
+  }
+  if (cpu < 0 || cpu >= CPU_SETSIZE || !CPU_ISSET(cpu, &allowed))
+    throw Error("bench: cannot pin to core " + std::to_string(requested) + ": not one this process may use");
+  cpu_set_t one;
+  CPU_ZERO(&one);
+  CPU_SET(cpu, &one);
+  if (sched_setaffinity(0, sizeof one, &one) != 0) throw Error("bench: cannot pin to core " + std::to_string(cpu));
+  return cpu;
+}
+
+// One pass of `controller` over the samples from a reset; the time of each call when `times`.
+void pass(Controller& controller, const RecordedSamples& samples, const Eigen::VectorXd& x0, Eigen::VectorXd& u,
+          std::vector<double>* times, const std::string& label) {
+  controller.reset(x0, samples.time.front());
+  for (std::size_t k = 0; k < samples.size(); ++k) {
+    try {
+      const auto start = std::chrono::steady_clock::now();
+      controller.control(samples.time[k], samples.measured[k], samples.reference[k], u);
+      const auto stop = std::chrono::steady_clock::now();
+      if (times) times->push_back(static_cast<double>(std::chrono::duration_cast<std::chrono::nanoseconds>(stop - start).count()));
+    } catch (const Error& error) {
+      throw Error("bench: " + label + " failed on the recorded sample at t = " + std::to_string(samples.time[k]) +
+                  " s: " + error.what());
+    }
+  }
+}
+
+}  // namespace
+
+RecordedSamples record_samples(const Flight& flight, PreparedController& prepared, int every) {
+  if (every < 1) throw Error("bench: --every must be >= 1");
+  RecordedSamples samples;
+  samples.recorded_with = prepared.spec.label;
+  PreparedController recorder{prepared.spec,
+                              std::make_unique<SampleRecorder>(prepared.controller->clone(), every, samples),
+                              prepared.settings};
+  const RunResult run = flight.fly(recorder);
+  if (samples.size() == 0)
+    throw Error("bench: the recording flight with " + prepared.spec.label + " kept no sample (" + run.summary.reason + ")");
+  return samples;
+}
+
+StepTimingReport time_steps(std::vector<PreparedController>& controllers, const RecordedSamples& samples,
+                            const Eigen::VectorXd& initial_state, Eigen::Index input_dim,
+                            const StepTimingOptions& options) {
+  if (options.repetitions < 1 || options.warmup_passes < 0)
+    throw Error("bench: repetitions must be >= 1 and warm-up passes >= 0");
+  StepTimingReport report;
+  report.options = options;
+  report.samples = samples.size();
+  report.cpu = pin(options.cpu);
+  Eigen::VectorXd u(input_dim);
+  for (auto& prepared : controllers) {
+    report.controllers.push_back({prepared.spec.label, prepared.spec.controller, {}, 0, 0, 0, 0, 0, false});
+    report.controllers.back().nanoseconds.reserve(samples.size() * static_cast<std::size_t>(options.repetitions));
+  }
+  for (int warmup = 0; warmup < options.warmup_passes; ++warmup)
+    for (auto& prepared : controllers) pass(*prepared.controller, samples, initial_state, u, nullptr, prepared.spec.label);
+  // Interleaved: repetition r of every controller before repetition r + 1 of any.
+  for (int repetition = 0; repetition < options.repetitions; ++repetition)
+    for (std::size_t c = 0; c < controllers.size(); ++c)
+      pass(*controllers[c].controller, samples, initial_state, u, &report.controllers[c].nanoseconds,
+           controllers[c].spec.label);
+  for (StepTiming& timing : report.controllers) {
+    std::vector<double> sorted = timing.nanoseconds;
+    std::sort(sorted.begin(), sorted.end());
+    timing.median = quantile(sorted, 0.5);
+    timing.p10 = quantile(sorted, 0.1);
+    timing.p90 = quantile(sorted, 0.9);
+    timing.p99 = quantile(sorted, 0.99);
+    timing.max = sorted.back();
+    timing.real_time = timing.max < options.budget_seconds * 1e9;
+  }
+  return report;
+}
+
+std::string step_timing_table(const StepTimingReport& report) {
+  std::size_t width = std::string("controller").size();
+  for (const auto& timing : report.controllers) width = std::max(width, timing.label.size());
+  const int w = static_cast<int>(width);
+  const double budget_us = report.options.budget_seconds * 1e6;
+  std::string text;
+  char line[256];
+  std::snprintf(line, sizeof line, "%-*s %10s %10s %10s %10s %10s %9s  %s\n", w, "controller", "median us", "p10 us",
+                "p90 us", "p99 us", "max us", "budget", "one core at 1 kHz");
+  text += line;
+  for (const auto& t : report.controllers) {
+    std::snprintf(line, sizeof line, "%-*s %10.2f %10.2f %10.2f %10.2f %10.2f %8.1f%%  %s\n", w, t.label.c_str(),
+                  t.median * 1e-3, t.p10 * 1e-3, t.p90 * 1e-3, t.p99 * 1e-3, t.max * 1e-3,
+                  100.0 * t.median * 1e-3 / budget_us,
+                  t.real_time ? "real-time capable (worst case within the period)" : "NOT real-time (worst case over the period)");
+    text += line;
+  }
+  std::snprintf(line, sizeof line,
+                "%zu recorded states x %d repetitions per controller (interleaved, after %d warm-up pass%s), %s; "
+                "budget: the %.3g ms controller period.\n",
+                report.samples, report.options.repetitions, report.options.warmup_passes,
+                report.options.warmup_passes == 1 ? "" : "es",
+                report.cpu >= 0 ? ("pinned to core " + std::to_string(report.cpu)).c_str() : "not pinned",
+                report.options.budget_seconds * 1e3);
+  text += line;
+  return text;
+}
+
+nlohmann::ordered_json to_json(const StepTimingReport& report) {
+  nlohmann::ordered_json j;
+  j["format"] = "thetad-bench-1";
+  j["samples"] = report.samples;
+  j["repetitions"] = report.options.repetitions;
+  j["warmup_passes"] = report.options.warmup_passes;
+  j["cpu"] = report.cpu;
+  j["budget_s"] = report.options.budget_seconds;
+  j["controllers"] = nlohmann::ordered_json::array();
+  for (const auto& t : report.controllers) {
+    j["controllers"].push_back({{"label", t.label},
+                                {"controller", t.controller},
+                                {"calls", t.nanoseconds.size()},
+                                {"median_ns", t.median},
+                                {"p10_ns", t.p10},
+                                {"p90_ns", t.p90},
+                                {"p99_ns", t.p99},
+                                {"max_ns", t.max},
+                                {"budget_share_median", t.median * 1e-9 / report.options.budget_seconds},
+                                {"real_time_capable", t.real_time}});
+  }
+  return j;
+}
+
+}  // namespace thetad

@@ -1,0 +1,183 @@
+#include "experiment/flight.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "core/error.hpp"
+#include "experiment/replay.hpp"
+#include "experiment/run_files.hpp"
+#include "experiment/sha256.hpp"
+#include "tests/scratch_directory.hpp"
+
+namespace thetad {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+const std::string kScenario = THETAD_SOURCE_DIR "/scenarios/scenario-1.yaml";
+
+RunControls seconds(double duration) {
+  RunControls controls;
+  controls.duration = duration;
+  return controls;
+}
+
+std::string read(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+RunResult fly(const Flight& flight, const std::string& spec) {
+  PreparedController prepared = flight.prepare(parse_controller_spec(spec));
+  return flight.fly(prepared);
+}
+
+TEST(Flight, RunControlsOverrideTheScenario) {
+  RunControls controls = seconds(0.5);
+  controls.dt = 5e-4;
+  controls.log_every = 10;
+  controls.seed = 9;
+  controls.ideal = true;
+  const Flight flight(kScenario, controls);
+  EXPECT_EQ(flight.settings().duration, 0.5);
+  EXPECT_EQ(flight.settings().dt, 5e-4);
+  EXPECT_EQ(flight.settings().controller_period_steps, 2);
+  EXPECT_EQ(flight.settings().controller_period(), 1e-3);
+  EXPECT_EQ(flight.settings().seed, 9u);
+  EXPECT_FALSE(flight.settings().parameter_uncertainty);
+  const RunResult run = fly(flight, "lqr");
+  EXPECT_EQ(run.summary.controller_samples, 500);
+  EXPECT_EQ(run.log.rows(), 50);
+}
+
+TEST(Flight, APlantStepThatDoesNotDivideTheControllerPeriodIsAnErrorNamingBoth) {
+  RunControls controls;
+  controls.dt = 3e-4;
+  try {
+    const Flight flight(kScenario, controls);
+    FAIL() << "no error";
+  } catch (const Error& error) {
+    EXPECT_THAT(error.what(), HasSubstr("dt 0.0003 s does not divide the controller period 0.001 s"));
+  }
+  controls.dt = 0.002;
+  EXPECT_THROW(Flight(kScenario, controls), Error);
+  EXPECT_THROW(Flight(kScenario, seconds(86401.0)), Error);
+  EXPECT_THROW(Flight(kScenario, seconds(-1.0)), Error);
+}
+
+TEST(Flight, SummaryOnlyKeepsNoLogButTheSameSummary) {
+  RunControls controls = seconds(0.3);
+  controls.timing = false;
+  const RunResult logged = fly(Flight(kScenario, controls), "theta-d");
+  controls.summary_only = true;
+  const RunResult summary_only = fly(Flight(kScenario, controls), "theta-d");
+  EXPECT_EQ(logged.log.rows(), 300);
+  EXPECT_EQ(summary_only.log.rows(), 0);
+  EXPECT_EQ(summary_only.summary.cost, logged.summary.cost);
+  EXPECT_EQ(summary_only.summary.rms_tracking_error, logged.summary.rms_tracking_error);
+  EXPECT_EQ(summary_only.summary.command_rms, logged.summary.command_rms);
+}
+
+TEST(Flight, ProvenanceSaysWhatProducedTheRun) {
+  const Flight flight(kScenario, seconds(0.1));
+  const RunResult run = fly(flight, "paper=theta-d");
+  const Provenance& p = run.provenance;
+  EXPECT_EQ(p.build.version, "0.1.0");
+  EXPECT_FALSE(p.build.build_type.empty());
+  EXPECT_FALSE(p.build.compiler.empty());
+  EXPECT_THAT(p.build.eigen, HasSubstr("3."));
+  EXPECT_EQ(p.scenario_name, "scenario-1");
+  EXPECT_EQ(p.scenario_file, kScenario);
+  EXPECT_EQ(p.scenario_sha256, sha256_of_file(kScenario));
+  EXPECT_EQ(p.scenario_sha256.size(), 64u);
+  EXPECT_EQ(p.model_preset, "resolved");
+  EXPECT_THAT(p.model_options, HasSubstr("rotor_speed_model="));
+  EXPECT_EQ(p.seed, 1u);
+  EXPECT_EQ(p.dt, 1e-3);
+  EXPECT_FALSE(p.host.empty());
+  EXPECT_EQ(p.start_time.size(), 20u);  // 2026-11-24T22:46:00Z
+  EXPECT_EQ(run.spec.label, "paper");
+
+  RunControls no_timing = seconds(0.1);
+  no_timing.timing = false;
+  const RunResult untimed = fly(Flight(kScenario, no_timing), "theta-d");
+  EXPECT_TRUE(untimed.provenance.host.empty());
+  EXPECT_TRUE(untimed.provenance.start_time.empty());
+  EXPECT_EQ(untimed.wall_seconds, 0.0);
+}
+
+TEST(Flight, ShippedScenariosAreFoundByName) {
+  EXPECT_EQ(Flight("scenario-2", seconds(0.1)).scenario().name, "scenario-2");
+  EXPECT_EQ(Flight("hover-step.yaml", seconds(0.1)).scenario().name, "hover-step");
+  try {
+    const Flight flight("no-such-scenario");
+    FAIL() << "no error";
+  } catch (const Error& error) {
+    EXPECT_THAT(error.what(), HasSubstr("scenario 'no-such-scenario': no such file, nor a shipped scenario"));
+  }
+}
+
+class FlightFiles : public ::testing::Test {
+ protected:
+  testing::ScratchDirectory scratch_{"thetad_flight_test"};
+  const fs::path dir_ = scratch_.path();
+};
+
+TEST_F(FlightFiles, WithoutTimingTwoRunsOfOneSeedGiveByteIdenticalFiles) {
+  RunControls controls = seconds(0.2);
+  controls.timing = false;
+  const RunFiles first = write_run_files(fly(Flight(kScenario, controls), "theta-d"), dir_ / "a");
+  const RunFiles second = write_run_files(fly(Flight(kScenario, controls), "theta-d"), dir_ / "b");
+  EXPECT_EQ(read(first.csv), read(second.csv));
+  EXPECT_EQ(read(first.json), read(second.json));
+  EXPECT_THAT(read(first.csv).substr(0, read(first.csv).find('\n')), ::testing::Not(HasSubstr("compute")));
+  EXPECT_THAT(read(first.json), ::testing::Not(HasSubstr("start_time")));
+  controls.seed = 2;
+  const RunFiles other = write_run_files(fly(Flight(kScenario, controls), "theta-d"), dir_ / "c");
+  EXPECT_NE(read(first.csv), read(other.csv));
+}
+
+TEST_F(FlightFiles, AReplayFliesTheSameRunFromTheResultFileAlone) {
+  std::ofstream(dir_ / "tuned.yaml") << "theta-d:\n  k: [0.5, 0.25]\n  l: [2, 3]\n";
+  RunControls controls = seconds(0.4);
+  controls.seed = 5;
+  controls.log_every = 4;
+  controls.wind_gust = false;
+  const Flight flight(kScenario, controls);
+  const RunFiles files =
+      write_run_files(fly(flight, "tuned=theta-d:" + (dir_ / "tuned.yaml").string()), dir_ / "out");
+  const Replay again = replay(files.json);
+  EXPECT_TRUE(again.differences.empty()) << again.differences.front();
+  EXPECT_EQ(again.result.spec.label, "tuned");
+  EXPECT_EQ(again.result.summary.settings.seed, 5u);
+  EXPECT_EQ(again.result.summary.settings.log_every, 4);
+  EXPECT_FALSE(again.result.summary.settings.wind_gust.enabled);
+
+  // A result edited by hand (or another run's) no longer agrees, and says where.
+  std::string text = read(files.json);
+  text.insert(text.find("\"J\": ") + 5, "9");
+  std::ofstream(files.json, std::ios::trunc) << text;
+  const Replay edited = replay(files.json);
+  ASSERT_EQ(edited.differences.size(), 1u);
+  EXPECT_THAT(edited.differences[0], HasSubstr("cost"));
+}
+
+TEST_F(FlightFiles, AReplayRefusesAScenarioThatChanged) {
+  fs::copy_file(kScenario, dir_ / "scenario.yaml");
+  const RunFiles files = write_run_files(fly(Flight((dir_ / "scenario.yaml").string(), seconds(0.1)), "lqr"), dir_);
+  std::ofstream(dir_ / "scenario.yaml", std::ios::app) << "# edited\n";
+  try {
+    replay(files.json);
+    FAIL() << "no error";
+  } catch (const Error& error) {
+    EXPECT_THAT(error.what(), HasSubstr("has changed since the run"));
+  }
+}
+
+}  // namespace
+}  // namespace thetad
