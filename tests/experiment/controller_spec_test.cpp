@@ -7,22 +7,14 @@
 #include <gtest/gtest.h>
 
 #include "core/error.hpp"
+#include "tests/error_message.hpp"
 #include "tests/scratch_directory.hpp"
 
 namespace thetad {
 namespace {
 
+using testing::error_message;
 using ::testing::HasSubstr;
-
-std::string error_of(const std::function<void()>& call) {
-  try {
-    call();
-  } catch (const Error& error) {
-    return error.what();
-  }
-  ADD_FAILURE() << "no thetad::Error";
-  return {};
-}
 
 class ControllerSpecs : public ::testing::Test {
  protected:
@@ -65,20 +57,20 @@ TEST_F(ControllerSpecs, WithoutAFileTheFallbackBlockOfTheControllerIsUsed) {
 }
 
 TEST_F(ControllerSpecs, BadSpecsAreErrorsNamingWhatIsWrong) {
-  EXPECT_THAT(error_of([] { parse_controller_spec("nope"); }), HasSubstr("unknown controller 'nope' (known: "));
-  EXPECT_THAT(error_of([] { parse_controller_spec("a=theta-d:"); }), HasSubstr("no settings file after ':'"));
-  EXPECT_THAT(error_of([&] { parse_controller_spec("sdre:" + path("tuned.yaml")); }),
+  EXPECT_THAT(error_message([] { parse_controller_spec("nope"); }), HasSubstr("unknown controller 'nope' (known: "));
+  EXPECT_THAT(error_message([] { parse_controller_spec("a=theta-d:"); }), HasSubstr("no settings file after ':'"));
+  EXPECT_THAT(error_message([&] { parse_controller_spec("sdre:" + path("tuned.yaml")); }),
               HasSubstr("has no block for 'sdre'"));
-  EXPECT_THAT(error_of([&] { parse_controller_spec("x=theta-d:" + path("missing.yaml")); }),
+  EXPECT_THAT(error_message([&] { parse_controller_spec("x=theta-d:" + path("missing.yaml")); }),
               HasSubstr("cannot read settings file"));
   for (const char* label : {"../up", ".hidden", "-flag", "a b", "tab\t", "x/y"})
-    EXPECT_THAT(error_of([&] { parse_controller_spec(std::string(label) + "=sdre"); }), HasSubstr("label '")) << label;
-  EXPECT_THAT(error_of([] { parse_controller_spec(std::string(65, 'a') + "=sdre"); }), HasSubstr("1-64 characters"));
+    EXPECT_THAT(error_message([&] { parse_controller_spec(std::string(label) + "=sdre"); }), HasSubstr("label '")) << label;
+  EXPECT_THAT(error_message([] { parse_controller_spec(std::string(65, 'a') + "=sdre"); }), HasSubstr("1-64 characters"));
 }
 
 TEST_F(ControllerSpecs, ALabelMayNotRepeat) {
   const std::vector<ControllerSpec> specs{parse_controller_spec("theta-d"), parse_controller_spec("theta-d")};
-  EXPECT_THAT(error_of([&] { check_labels(specs); }), HasSubstr("label 'theta-d' is used twice"));
+  EXPECT_THAT(error_message([&] { check_labels(specs); }), HasSubstr("label 'theta-d' is used twice"));
   check_labels({parse_controller_spec("theta-d"), parse_controller_spec("tuned=theta-d:" + path("tuned.yaml"))});
 }
 
@@ -98,18 +90,18 @@ TEST_F(ControllerSpecs, AYamlListGivesLabelledSpecsWithInlineOrFiledSettings) {
   EXPECT_EQ(specs[2].settings["mode"].as<std::string>(), "cold");
   EXPECT_EQ(specs[2].settings_source, source);
 
-  EXPECT_THAT(error_of([&] { read_controller_specs(YAML::Load("- {controller: sdre, gain: 1}"), source); }),
+  EXPECT_THAT(error_message([&] { read_controller_specs(YAML::Load("- {controller: sdre, gain: 1}"), source); }),
               HasSubstr("compare.yaml:1:22: field 'controllers[0].gain': unknown field"));
-  EXPECT_THAT(error_of([&] { read_controller_specs(YAML::Load("- {label: a}"), source); }),
+  EXPECT_THAT(error_message([&] { read_controller_specs(YAML::Load("- {label: a}"), source); }),
               HasSubstr("field 'controllers[0].controller': missing"));
-  EXPECT_THAT(error_of([&] { read_controller_specs(YAML::Load("- {controller: sdre}\n- {controller: sdre}"), source); }),
+  EXPECT_THAT(error_message([&] { read_controller_specs(YAML::Load("- {controller: sdre}\n- {controller: sdre}"), source); }),
               HasSubstr("used twice"));
-  EXPECT_THAT(error_of([&] { read_controller_specs(YAML::Load("[]"), source); }), HasSubstr("non-empty list"));
+  EXPECT_THAT(error_message([&] { read_controller_specs(YAML::Load("[]"), source); }), HasSubstr("non-empty list"));
 }
 
 TEST_F(ControllerSpecs, ASettingsFileMayOnlyNameRegisteredControllers) {
   std::ofstream(dir_ / "typo.yaml") << "theta_d:\n  k: [1, 1]\n";
-  EXPECT_THAT(error_of([&] { load_settings_file(path("typo.yaml")); }),
+  EXPECT_THAT(error_message([&] { load_settings_file(path("typo.yaml")); }),
               HasSubstr("typo.yaml:1:1: field 'theta_d': unknown controller"));
 }
 

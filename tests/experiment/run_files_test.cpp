@@ -15,11 +15,13 @@
 #include "core/error.hpp"
 #include "experiment/flight.hpp"
 #include "experiment/sha256.hpp"
+#include "tests/error_message.hpp"
 #include "tests/scratch_directory.hpp"
 
 namespace thetad {
 namespace {
 
+using testing::error_message;
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
@@ -31,16 +33,6 @@ RunResult short_run(const std::string& label, bool summary_only = false, std::ui
   const Flight flight(THETAD_SOURCE_DIR "/scenarios/scenario-1.yaml", controls);
   PreparedController prepared = flight.prepare(parse_controller_spec(label + "=lqr"));
   return flight.fly(prepared);
-}
-
-std::string error_of(const std::function<void()>& call) {
-  try {
-    call();
-  } catch (const Error& error) {
-    return error.what();
-  }
-  ADD_FAILURE() << "no thetad::Error";
-  return {};
 }
 
 class RunFilesTest : public ::testing::Test {
@@ -77,9 +69,9 @@ TEST_F(RunFilesTest, ALogFromAnotherRunIsRefused) {
   write_run_files(short_run("a", false, 2), dir_ / "two");
   // What a kill between the two renames of a rerun leaves: the new log beside the old result.
   fs::copy_file(dir_ / "two" / "a.csv", dir_ / "one" / "a.csv", fs::copy_options::overwrite_existing);
-  EXPECT_THAT(error_of([&] { read_run_files(dir_ / "one" / "a.json"); }), HasSubstr("come from different runs"));
+  EXPECT_THAT(error_message([&] { read_run_files(dir_ / "one" / "a.json"); }), HasSubstr("come from different runs"));
   fs::remove(dir_ / "one" / "a.csv");
-  EXPECT_THAT(error_of([&] { read_run_files(dir_ / "one" / "a.json"); }), HasSubstr("is missing"));
+  EXPECT_THAT(error_message([&] { read_run_files(dir_ / "one" / "a.json"); }), HasSubstr("is missing"));
 }
 
 TEST_F(RunFilesTest, ASummaryOnlyResultHasNoLogAndRemovesAStaleOne) {
@@ -111,7 +103,7 @@ TEST_F(RunFilesTest, AFolderListsItsResultsInNameOrderAndIgnoresOtherJson) {
   ASSERT_EQ(runs.size(), 2u);
   EXPECT_EQ(runs[0].label, "a");
   EXPECT_EQ(runs[1].label, "b");
-  EXPECT_THAT(error_of([&] { read_result_folder(dir_ / "none"); }), HasSubstr("no such directory"));
+  EXPECT_THAT(error_message([&] { read_result_folder(dir_ / "none"); }), HasSubstr("no such directory"));
 }
 
 TEST_F(RunFilesTest, PartialNamesAreUniquePerWriteAndRemovedUnlessCommitted) {
@@ -148,13 +140,13 @@ TEST_F(RunFilesTest, AnOutputFolderIsCheckedBeforeAnythingFlies) {
   prepare_output_folder(dir_ / "new" / "folder");
   EXPECT_TRUE(fs::is_directory(dir_ / "new" / "folder"));
   std::ofstream(dir_ / "file") << "x";
-  EXPECT_THAT(error_of([&] { prepare_output_folder(dir_ / "file"); }), HasSubstr("--out"));
+  EXPECT_THAT(error_message([&] { prepare_output_folder(dir_ / "file"); }), HasSubstr("--out"));
   // Read-only even for root.
-  EXPECT_THAT(error_of([&] { prepare_output_folder("/proc/thetad-out"); }), HasSubstr("--out /proc/thetad-out"));
+  EXPECT_THAT(error_message([&] { prepare_output_folder("/proc/thetad-out"); }), HasSubstr("--out /proc/thetad-out"));
   if (geteuid() != 0) {  // root writes anywhere
     fs::create_directories(dir_ / "read-only");
     fs::permissions(dir_ / "read-only", fs::perms::owner_read | fs::perms::owner_exec);
-    EXPECT_THAT(error_of([&] { prepare_output_folder(dir_ / "read-only"); }), HasSubstr("cannot write there"));
+    EXPECT_THAT(error_message([&] { prepare_output_folder(dir_ / "read-only"); }), HasSubstr("cannot write there"));
   }
 }
 
