@@ -8,7 +8,6 @@
 #include <yaml-cpp/yaml.h>
 
 #include "controllers/lqr_scheduled.hpp"
-#include "core/helicopter/paper_weights.hpp"
 #include "core/trim.hpp"
 
 namespace {
@@ -19,7 +18,7 @@ void BM_LqrScheduledControl(benchmark::State& state) {
   const auto table = std::make_shared<thetad::LqrScheduleTable>(thetad::design_lqr_schedule(
       model, thetad::read_lqr_grid(YAML::Load("{speeds: [0, 2, 4], courses_deg: [0, 90, 180, 270], "
                                               "climb_rates: [-0.5, 0, 0.5]}")),
-      thetad::heli::paper_state_weights(), thetad::heli::paper_input_weights()));
+      model.design_defaults().state_weights, model.design_defaults().input_weights));
   thetad::LqrScheduledController controller(model, table);
   const thetad::Trim trim = thetad::find_trim(model, thetad::TrimCondition::straight(3.0, 0.5, 0.25, 3.5));
   Eigen::VectorXd measured = trim.state;

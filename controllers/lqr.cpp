@@ -6,7 +6,6 @@
 #include "controllers/registry.hpp"
 #include "core/settings.hpp"
 #include "core/error.hpp"
-#include "core/helicopter/paper_weights.hpp"
 #include "core/trim.hpp"
 
 namespace thetad {
@@ -55,8 +54,9 @@ std::unique_ptr<Controller> make_lqr(const YAML::Node& node, const ControllerCon
   const Settings fields(node);
   fields.allow_only({"Q", "R"});
   LqrSettings settings;
-  settings.Q = fields.diagonal_weight("Q", heli::paper_state_weights(), Settings::Weight::positive_semidefinite);
-  settings.R = fields.diagonal_weight("R", heli::paper_input_weights(), Settings::Weight::positive_definite);
+  const DesignDefaults defaults = context.model.design_defaults();
+  settings.Q = fields.diagonal_weight("Q", defaults.state_weights, Settings::Weight::positive_semidefinite);
+  settings.R = fields.diagonal_weight("R", defaults.input_weights, Settings::Weight::positive_definite);
   settings.design_states = heli::kStateDim - 1;  // all but the bias state s
   const Eigen::VectorXd& x0 = context.initial_state;
   if (x0.size() != heli::kStateDim) {

@@ -19,7 +19,6 @@
 #include "controllers/registry.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
-#include "core/helicopter/paper_weights.hpp"
 #include "core/settings.hpp"
 #include "core/trim.hpp"
 
@@ -583,10 +582,11 @@ std::unique_ptr<Controller> make_lqr_scheduled(const YAML::Node& node, const Con
     check_lqr_schedule_model(*table, context.model, file);
   } else {
     const LqrScheduleGrid grid = fields.has("grid") ? read_lqr_grid(node["grid"], "grid") : LqrScheduleGrid::envelope();
+    const DesignDefaults defaults = context.model.design_defaults();
     const Eigen::VectorXd q =
-        fields.diagonal_weight("Q", heli::paper_state_weights(), Settings::Weight::positive_semidefinite).diagonal();
+        fields.diagonal_weight("Q", defaults.state_weights, Settings::Weight::positive_semidefinite).diagonal();
     const Eigen::VectorXd r =
-        fields.diagonal_weight("R", heli::paper_input_weights(), Settings::Weight::positive_definite).diagonal();
+        fields.diagonal_weight("R", defaults.input_weights, Settings::Weight::positive_definite).diagonal();
     table = std::make_shared<LqrScheduleTable>(design_lqr_schedule(context.model, grid, q, r));
   }
   return std::make_unique<LqrScheduledController>(context.model, std::move(table), time_constant);
