@@ -566,6 +566,7 @@ void LqrScheduledController::control(double t, const Eigen::Ref<const Eigen::Vec
 namespace {
 
 std::unique_ptr<Controller> make_lqr_scheduled(const YAML::Node& node, const ControllerContext& context) {
+  const heli::Helicopter& model = helicopter_of(context, "lqr-scheduled");
   const Settings fields(node);
   fields.allow_only({"table", "grid", "Q", "R", "velocity_time_constant"});
   const double time_constant = fields.number("velocity_time_constant",
@@ -579,17 +580,16 @@ std::unique_ptr<Controller> make_lqr_scheduled(const YAML::Node& node, const Con
     }
     const std::string file = fields.string("table", "");
     table = std::make_shared<LqrScheduleTable>(load_lqr_schedule(file));
-    check_lqr_schedule_model(*table, context.model, file);
+    check_lqr_schedule_model(*table, model, file);
   } else {
     const LqrScheduleGrid grid = fields.has("grid") ? read_lqr_grid(node["grid"], "grid") : LqrScheduleGrid::envelope();
-    const DesignDefaults defaults = context.model.design_defaults();
     const Eigen::VectorXd q =
-        fields.diagonal_weight("Q", defaults.state_weights, Settings::Weight::positive_semidefinite).diagonal();
+        fields.diagonal_weight("Q", context.defaults.state_weights, Settings::Weight::positive_semidefinite).diagonal();
     const Eigen::VectorXd r =
-        fields.diagonal_weight("R", defaults.input_weights, Settings::Weight::positive_definite).diagonal();
-    table = std::make_shared<LqrScheduleTable>(design_lqr_schedule(context.model, grid, q, r));
+        fields.diagonal_weight("R", context.defaults.input_weights, Settings::Weight::positive_definite).diagonal();
+    table = std::make_shared<LqrScheduleTable>(design_lqr_schedule(model, grid, q, r));
   }
-  return std::make_unique<LqrScheduledController>(context.model, std::move(table), time_constant);
+  return std::make_unique<LqrScheduledController>(model, std::move(table), time_constant);
 }
 
 const ControllerRegistration registration(

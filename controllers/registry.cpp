@@ -1,10 +1,25 @@
 #include "controllers/registry.hpp"
 
 #include <algorithm>
+#include <utility>
 
 #include "core/error.hpp"
 
 namespace thetad {
+
+ControllerContext::ControllerContext(const SdcPlant& plant, Eigen::VectorXd initial_state, double initial_time)
+    : ControllerContext(plant, plant.design_defaults(), std::move(initial_state), initial_time) {}
+
+ControllerContext::ControllerContext(const SdcPlant& plant, DesignDefaults defaults, Eigen::VectorXd initial_state,
+                                     double initial_time)
+    : plant(plant), defaults(std::move(defaults)), initial_state(std::move(initial_state)), initial_time(initial_time) {}
+
+const heli::Helicopter& helicopter_of(const ControllerContext& context, const std::string& controller) {
+  if (const auto* helicopter = dynamic_cast<const heli::Helicopter*>(&context.plant)) return *helicopter;
+  throw Error(controller + ": flies only the X-Cell helicopter (heli::Helicopter), whose trims it is designed at; "
+              "this plant is another SdcPlant (n = " + std::to_string(context.plant.state_dim()) +
+              ", m = " + std::to_string(context.plant.input_dim()) + ")");
+}
 
 ControllerRegistry& ControllerRegistry::instance() {
   // A function-local static: registrations run during static initialization of other

@@ -12,13 +12,25 @@
 
 namespace thetad {
 
-// What a controller is designed with: the model it knows (nominal parameters, no wind: spec A-27)
-// and the initial state of the run (t0, xa(t0): spec §7.1).
+// What a controller is designed with: the plant it knows (for the helicopter the nominal
+// parameters, no wind: spec A-27), the design defaults its settings start from and the initial
+// state of the run (t0, xa(t0): spec §7.1). θ–D and SDRE need nothing but an SdcPlant; a
+// controller that needs the helicopter's specifics asks helicopter_of().
 struct ControllerContext {
-  const heli::Helicopter& model;
+  const SdcPlant& plant;
+  DesignDefaults defaults;          // plant.design_defaults() unless the caller chose others
   Eigen::VectorXd initial_state;
   double initial_time = 0.0;
+
+  // Keeps a reference to `plant`: it must outlive the context and the controllers built with it.
+  ControllerContext(const SdcPlant& plant, Eigen::VectorXd initial_state, double initial_time = 0.0);
+  ControllerContext(const SdcPlant& plant, DesignDefaults defaults, Eigen::VectorXd initial_state,
+                    double initial_time = 0.0);
 };
+
+// The helicopter behind `context`, for a controller that needs its specifics (trims); throws
+// thetad::Error naming `controller` when the plant is another one.
+const heli::Helicopter& helicopter_of(const ControllerContext& context, const std::string& controller);
 
 // Builds a controller from its settings block (a YAML map; null means all defaults). Unknown or
 // ill-typed fields throw thetad::Error naming the field (and the line, when the node has one).

@@ -134,13 +134,13 @@ std::unique_ptr<Controller> make_sdre(const YAML::Node& node, const ControllerCo
   settings.mode = fields.choice("mode", "warm", {"cold", "warm"}) == "warm" ? SdreSettings::Mode::warm
                                                                              : SdreSettings::Mode::cold;
   settings.fixed_point_iterations = fields.integer("fixed_point_iterations", settings.fixed_point_iterations, 1);
-  // The plant's design defaults: for the helicopter the paper's weights, and the fixed point
+  // The context's design defaults: for the helicopter the paper's weights, and the fixed point
   // starts from hover thrust at the first sample (spec §7.6).
-  const DesignDefaults defaults = context.model.design_defaults();
+  const DesignDefaults& defaults = context.defaults;
   settings.Q = fields.diagonal_weight("Q", defaults.state_weights, Settings::Weight::positive_semidefinite);
   settings.R = fields.diagonal_weight("R", defaults.input_weights, Settings::Weight::positive_definite);
   settings.initial_input = defaults.input;
-  return std::make_unique<SdreController>(context.model, std::move(settings));
+  return std::make_unique<SdreController>(context.plant, std::move(settings));
 }
 
 const ControllerRegistration registration(

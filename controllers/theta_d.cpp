@@ -37,15 +37,15 @@ Eigen::VectorXd series_parameter(const char* what, const Eigen::VectorXd& given,
   return given;
 }
 
-// The plant's design defaults live here, in the factory, not in the controller: for the
-// helicopter the paper's weights (Eqs. 33–34) and u0 = [m g, 0, 0, 0, 0], the rotor at hover
-// thrust on the ground (spec §7.1).
+// The design defaults come with the context, not from the controller: for the helicopter the
+// paper's weights (Eqs. 33–34) and u0 = [m g, 0, 0, 0, 0], the rotor at hover thrust on the
+// ground (spec §7.1).
 const ControllerRegistration registration(
     "theta-d", "theta-D series T0 + ... + T_{N-1} around the initial state (paper-spec §5, §7)",
     [](const YAML::Node& node, const ControllerContext& context) -> std::unique_ptr<Controller> {
       const Settings settings(node);
       settings.allow_only({"terms", "k", "l", "fixed_point_iterations", "fixed_point_tolerance", "Q", "R"});
-      const DesignDefaults defaults = context.model.design_defaults();
+      const DesignDefaults& defaults = context.defaults;
       ThetaDSettings s;
       s.terms = settings.integer("terms", s.terms, 1);
       const Eigen::VectorXd ones = Eigen::VectorXd::Ones(s.terms - 1);
@@ -56,7 +56,7 @@ const ControllerRegistration registration(
       s.Q = settings.diagonal_weight("Q", defaults.state_weights, Settings::Weight::positive_semidefinite);
       s.R = settings.diagonal_weight("R", defaults.input_weights, Settings::Weight::positive_definite);
       s.initial_input = defaults.input;
-      return std::make_unique<ThetaDController>(context.model, std::move(s));
+      return std::make_unique<ThetaDController>(context.plant, std::move(s));
     });
 
 }  // namespace
