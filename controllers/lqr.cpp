@@ -50,9 +50,8 @@ void LqrController::control(double, const Eigen::Ref<const Eigen::VectorXd>& mea
 
 namespace {
 
-std::unique_ptr<Controller> make_lqr(const YAML::Node& node, const ControllerContext& context) {
+std::unique_ptr<Controller> make_lqr(const Settings& fields, const ControllerContext& context) {
   const heli::Helicopter& model = helicopter_of(context, "lqr");
-  const Settings fields(node);
   fields.allow_only({"Q", "R"});
   LqrSettings settings;
   settings.Q = fields.diagonal_weight("Q", context.defaults.state_weights, Settings::Weight::positive_semidefinite);

@@ -127,8 +127,7 @@ std::vector<std::pair<std::string, double>> SdreController::counters() const {
 
 namespace {
 
-std::unique_ptr<Controller> make_sdre(const YAML::Node& node, const ControllerContext& context) {
-  const Settings fields(node);
+std::unique_ptr<Controller> make_sdre(const Settings& fields, const ControllerContext& context) {
   fields.allow_only({"mode", "fixed_point_iterations", "Q", "R"});
   SdreSettings settings;
   settings.mode = fields.choice("mode", "warm", {"cold", "warm"}) == "warm" ? SdreSettings::Mode::warm

@@ -42,8 +42,7 @@ Eigen::VectorXd series_parameter(const char* what, const Eigen::VectorXd& given,
 // ground (spec §7.1).
 const ControllerRegistration registration(
     "theta-d", "theta-D series T0 + ... + T_{N-1} around the initial state (paper-spec §5, §7)",
-    [](const YAML::Node& node, const ControllerContext& context) -> std::unique_ptr<Controller> {
-      const Settings settings(node);
+    [](const Settings& settings, const ControllerContext& context) -> std::unique_ptr<Controller> {
       settings.allow_only({"terms", "k", "l", "fixed_point_iterations", "fixed_point_tolerance", "Q", "R"});
       const DesignDefaults& defaults = context.defaults;
       ThetaDSettings s;

@@ -32,7 +32,7 @@ int run_design_lqr(const DesignLqrArguments& arguments) {
   if (!arguments.grid.empty()) {
     grid = with_settings_source(arguments.grid.string(), [&] {
       try {
-        return read_lqr_grid(YAML::LoadFile(arguments.grid.string()));
+        return read_lqr_grid(Settings(YAML::LoadFile(arguments.grid.string())));
       } catch (const YAML::Exception& error) {
         throw Error(arguments.grid.string() + ":" + std::to_string(error.mark.line + 1) + ": invalid YAML: " + error.msg);
       }

@@ -50,9 +50,8 @@ void ExamplePidController::control(double, const Eigen::Ref<const Eigen::VectorX
 
 namespace {
 
-std::unique_ptr<Controller> make_example_pid(const YAML::Node& node, const ControllerContext& context) {
+std::unique_ptr<Controller> make_example_pid(const Settings& fields, const ControllerContext& context) {
   const Helicopter& model = helicopter_of(context, "example-pid");
-  const Settings fields(node);
   fields.allow_only({"position_gains", "altitude_gains", "roll_gains", "pitch_gains", "yaw_gains"});
   PidGains gains;
   gains.position = fields.vector("position_gains", gains.position, 3, 0.0);
