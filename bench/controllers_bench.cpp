@@ -28,7 +28,6 @@
 #include "controllers/sdre.hpp"
 #include "controllers/theta_d.hpp"
 #include "core/helicopter/helicopter.hpp"
-#include "core/helicopter/paper_weights.hpp"
 #include "core/sim/simulator.hpp"
 #include "scenarios/scenario.hpp"
 
@@ -138,10 +137,10 @@ void registered_step(benchmark::State& state, const std::string& name) {
 template <class Settings>
 Settings series_settings(const heli::Helicopter& model, int passes) {
   Settings s;
-  s.Q = heli::paper_state_weights().asDiagonal();
-  s.R = heli::paper_input_weights().asDiagonal();
-  s.initial_input =
-      Eigen::VectorXd::Unit(heli::kInputDim, heli::kTmr) * (model.parameters().mass * model.parameters().gravity);
+  const thetad::DesignDefaults defaults = model.design_defaults();
+  s.Q = defaults.state_weights.asDiagonal();
+  s.R = defaults.input_weights.asDiagonal();
+  s.initial_input = defaults.input;
   s.fixed_point_iterations = passes;
   s.fixed_point_tolerance = 0.0;
   return s;
@@ -168,8 +167,8 @@ void sdre_step(benchmark::State& state, thetad::SdreSettings::Mode mode, int pas
 void sdre_step_sb02md(benchmark::State& state) {
   const Recording& r = recording();
   const int n = heli::kStateDim;
-  const Eigen::MatrixXd Q = heli::paper_state_weights().asDiagonal();
-  const Eigen::MatrixXd R = heli::paper_input_weights().asDiagonal();
+  const Eigen::MatrixXd Q = r.model.design_defaults().state_weights.asDiagonal();
+  const Eigen::MatrixXd R = r.model.design_defaults().input_weights.asDiagonal();
   const Eigen::LLT<Eigen::MatrixXd> R_factor(R);
   thetad::bench::Sb02md sb02md(n);
   Eigen::MatrixXd F(n, n), B(n, heli::kInputDim), g(n, n), x(n, n);

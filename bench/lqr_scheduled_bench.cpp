@@ -8,7 +8,6 @@
 #include <yaml-cpp/yaml.h>
 
 #include "controllers/lqr_scheduled.hpp"
-#include "core/helicopter/paper_weights.hpp"
 #include "core/trim.hpp"
 
 namespace {
@@ -16,10 +15,11 @@ namespace {
 void BM_LqrScheduledControl(benchmark::State& state) {
   const thetad::heli::Helicopter model;
   // A small grid keeps the smoke run quick; the step's cost does not depend on the grid's size.
-  const auto table = std::make_shared<thetad::LqrScheduleTable>(thetad::design_lqr_schedule(
-      model, thetad::read_lqr_grid(YAML::Load("{speeds: [0, 2, 4], courses_deg: [0, 90, 180, 270], "
-                                              "climb_rates: [-0.5, 0, 0.5]}")),
-      thetad::heli::paper_state_weights(), thetad::heli::paper_input_weights()));
+  const thetad::LqrScheduleGrid grid = thetad::read_lqr_grid(thetad::Settings(
+      YAML::Load("{speeds: [0, 2, 4], courses_deg: [0, 90, 180, 270], climb_rates: [-0.5, 0, 0.5]}")));
+  const thetad::DesignDefaults defaults = model.design_defaults();
+  const auto table = std::make_shared<thetad::LqrScheduleTable>(
+      thetad::design_lqr_schedule(model, grid, defaults.state_weights, defaults.input_weights));
   thetad::LqrScheduledController controller(model, table);
   const thetad::Trim trim = thetad::find_trim(model, thetad::TrimCondition::straight(3.0, 0.5, 0.25, 3.5));
   Eigen::VectorXd measured = trim.state;

@@ -6,7 +6,6 @@
 #include "controllers/registry.hpp"
 #include "core/settings.hpp"
 #include "core/error.hpp"
-#include "core/helicopter/paper_weights.hpp"
 #include "core/trim.hpp"
 
 namespace thetad {
@@ -51,20 +50,20 @@ void LqrController::control(double, const Eigen::Ref<const Eigen::VectorXd>& mea
 
 namespace {
 
-std::unique_ptr<Controller> make_lqr(const YAML::Node& node, const ControllerContext& context) {
-  const Settings fields(node);
+std::unique_ptr<Controller> make_lqr(const Settings& fields, const ControllerContext& context) {
+  const heli::Helicopter& model = helicopter_of(context, "lqr");
   fields.allow_only({"Q", "R"});
   LqrSettings settings;
-  settings.Q = fields.diagonal_weight("Q", heli::paper_state_weights(), Settings::Weight::positive_semidefinite);
-  settings.R = fields.diagonal_weight("R", heli::paper_input_weights(), Settings::Weight::positive_definite);
+  settings.Q = fields.diagonal_weight("Q", context.defaults.state_weights, Settings::Weight::positive_semidefinite);
+  settings.R = fields.diagonal_weight("R", context.defaults.input_weights, Settings::Weight::positive_definite);
   settings.design_states = heli::kStateDim - 1;  // all but the bias state s
   const Eigen::VectorXd& x0 = context.initial_state;
   if (x0.size() != heli::kStateDim) {
     throw Error("lqr: initial state has " + std::to_string(x0.size()) + " entries, the model " +
                 std::to_string(heli::kStateDim));
   }
-  const Trim trim = find_trim(context.model, TrimCondition::hover(-x0(heli::kZp), x0(heli::kPsi)));
-  return std::make_unique<LqrController>(context.model, operating_point(context.model, trim), std::move(settings));
+  const Trim trim = find_trim(model, TrimCondition::hover(-x0(heli::kZp), x0(heli::kPsi)));
+  return std::make_unique<LqrController>(model, operating_point(model, trim), std::move(settings));
 }
 
 const ControllerRegistration registration(

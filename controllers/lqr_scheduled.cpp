@@ -19,7 +19,6 @@
 #include "controllers/registry.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
-#include "core/helicopter/paper_weights.hpp"
 #include "core/settings.hpp"
 #include "core/trim.hpp"
 
@@ -51,10 +50,21 @@ constexpr double kMaxGridClimb = 10.0;  // beyond it A4 has several roots (A-11)
 
 }  // namespace
 
+namespace {
+
+// The envelope's courses as the settings give them, in degrees: every 45°.
+std::vector<double> envelope_courses_deg() {
+  std::vector<double> courses;
+  for (int course = 0; course < 360; course += 45) courses.push_back(course);
+  return courses;
+}
+
+}  // namespace
+
 LqrScheduleGrid LqrScheduleGrid::envelope() {
   LqrScheduleGrid grid;
   grid.speeds = {0.0, 1.0, 2.0, 3.0, 4.0, 6.0, 8.0, 10.0, 12.5, 15.0, 17.5, 20.0};
-  for (int course = 0; course < 360; course += 45) grid.courses.push_back(course * kDegree);
+  for (const double course : envelope_courses_deg()) grid.courses.push_back(course * kDegree);
   grid.climb_rates = {-1.0, 0.0, 1.0};
   return grid;
 }
@@ -78,30 +88,23 @@ void LqrScheduleGrid::validate() const {
   if (!std::isfinite(altitude)) throw Error("lqr-scheduled grid: altitude must be finite");
 }
 
-LqrScheduleGrid read_lqr_grid(const YAML::Node& node, const std::string& path) {
-  const Settings fields(node, path);
+LqrScheduleGrid read_lqr_grid(const Settings& fields) {
   fields.allow_only({"speeds", "courses_deg", "climb_rates", "altitude"});
-  LqrScheduleGrid grid = LqrScheduleGrid::envelope();
-  const auto list = [&](const char* key, double min, double max, const char* unit, double scale,
-                        std::vector<double>& values) {
-    if (!fields.has(key)) return;
-    const YAML::Node entries = node[key];
-    if (!entries.IsSequence()) throw fields.error(key, "expected a list of numbers");
-    values.clear();
-    for (const YAML::Node& entry : entries) {
-      try {
-        values.push_back(entry.as<double>() * scale);
-      } catch (const YAML::Exception&) {
-        throw fields.error(key, "expected a list of numbers");
-      }
-    }
+  const LqrScheduleGrid envelope = LqrScheduleGrid::envelope();
+  // Recorded as given (courses in degrees), so that the settings as used rebuild the same grid.
+  const auto list = [&](const char* key, const std::vector<double>& fallback, double min, double max,
+                        const char* unit, double scale) {
+    std::vector<double> values = fields.list(key, fallback);
+    for (double& value : values) value *= scale;
     const std::string problem = list_problem(values, min * scale, max * scale, unit);
     if (!problem.empty()) throw fields.error(key, problem);
+    return values;
   };
-  list("speeds", 0.0, kMaxGridSpeed, "m/s", 1.0, grid.speeds);
-  list("courses_deg", 0.0, 360.0, "rad", kDegree, grid.courses);
-  list("climb_rates", -kMaxGridClimb, kMaxGridClimb, "m/s", 1.0, grid.climb_rates);
-  grid.altitude = fields.number("altitude", grid.altitude, -1e4, 1e4);
+  LqrScheduleGrid grid;
+  grid.speeds = list("speeds", envelope.speeds, 0.0, kMaxGridSpeed, "m/s", 1.0);
+  grid.courses = list("courses_deg", envelope_courses_deg(), 0.0, 360.0, "rad", kDegree);
+  grid.climb_rates = list("climb_rates", envelope.climb_rates, -kMaxGridClimb, kMaxGridClimb, "m/s", 1.0);
+  grid.altitude = fields.number("altitude", envelope.altitude, -1e4, 1e4);
   return grid;
 }
 
@@ -566,8 +569,8 @@ void LqrScheduledController::control(double t, const Eigen::Ref<const Eigen::Vec
 
 namespace {
 
-std::unique_ptr<Controller> make_lqr_scheduled(const YAML::Node& node, const ControllerContext& context) {
-  const Settings fields(node);
+std::unique_ptr<Controller> make_lqr_scheduled(const Settings& fields, const ControllerContext& context) {
+  const heli::Helicopter& model = helicopter_of(context, "lqr-scheduled");
   fields.allow_only({"table", "grid", "Q", "R", "velocity_time_constant"});
   const double time_constant = fields.number("velocity_time_constant",
                                              LqrScheduledController::kDefaultVelocityTimeConstant, 0.0, 60.0);
@@ -580,16 +583,16 @@ std::unique_ptr<Controller> make_lqr_scheduled(const YAML::Node& node, const Con
     }
     const std::string file = fields.string("table", "");
     table = std::make_shared<LqrScheduleTable>(load_lqr_schedule(file));
-    check_lqr_schedule_model(*table, context.model, file);
+    check_lqr_schedule_model(*table, model, file);
   } else {
-    const LqrScheduleGrid grid = fields.has("grid") ? read_lqr_grid(node["grid"], "grid") : LqrScheduleGrid::envelope();
+    const LqrScheduleGrid grid = read_lqr_grid(fields.block("grid"));
     const Eigen::VectorXd q =
-        fields.diagonal_weight("Q", heli::paper_state_weights(), Settings::Weight::positive_semidefinite).diagonal();
+        fields.diagonal_weight("Q", context.defaults.state_weights, Settings::Weight::positive_semidefinite).diagonal();
     const Eigen::VectorXd r =
-        fields.diagonal_weight("R", heli::paper_input_weights(), Settings::Weight::positive_definite).diagonal();
-    table = std::make_shared<LqrScheduleTable>(design_lqr_schedule(context.model, grid, q, r));
+        fields.diagonal_weight("R", context.defaults.input_weights, Settings::Weight::positive_definite).diagonal();
+    table = std::make_shared<LqrScheduleTable>(design_lqr_schedule(model, grid, q, r));
   }
-  return std::make_unique<LqrScheduledController>(context.model, std::move(table), time_constant);
+  return std::make_unique<LqrScheduledController>(model, std::move(table), time_constant);
 }
 
 const ControllerRegistration registration(

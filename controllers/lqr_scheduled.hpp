@@ -25,6 +25,7 @@
 #include "controllers/controller.hpp"
 #include "controllers/linearization.hpp"
 #include "core/helicopter/helicopter.hpp"
+#include "core/settings.hpp"
 
 namespace thetad {
 
@@ -48,9 +49,10 @@ struct LqrScheduleGrid {
   void validate() const;
 };
 
-// A grid from a YAML (or JSON) map: speeds (m/s), courses_deg, climb_rates (m/s), altitude (m);
-// a missing key keeps the envelope's value. Errors are SettingsErrors naming the field.
-LqrScheduleGrid read_lqr_grid(const YAML::Node& node, const std::string& path = {});
+// A grid from a settings block (a YAML or JSON map): speeds (m/s), courses_deg, climb_rates (m/s),
+// altitude (m); a missing key keeps the envelope's value. Every field is recorded in the block's
+// resolved(), as given. Errors are SettingsErrors naming the field.
+LqrScheduleGrid read_lqr_grid(const Settings& fields);
 
 // One designed grid point.
 struct LqrSchedulePoint {

@@ -1,10 +1,25 @@
 #include "controllers/registry.hpp"
 
 #include <algorithm>
+#include <utility>
 
 #include "core/error.hpp"
 
 namespace thetad {
+
+ControllerContext::ControllerContext(const SdcPlant& plant, Eigen::VectorXd initial_state, double initial_time)
+    : ControllerContext(plant, plant.design_defaults(), std::move(initial_state), initial_time) {}
+
+ControllerContext::ControllerContext(const SdcPlant& plant, DesignDefaults defaults, Eigen::VectorXd initial_state,
+                                     double initial_time)
+    : plant(plant), defaults(std::move(defaults)), initial_state(std::move(initial_state)), initial_time(initial_time) {}
+
+const heli::Helicopter& helicopter_of(const ControllerContext& context, const std::string& controller) {
+  if (const auto* helicopter = dynamic_cast<const heli::Helicopter*>(&context.plant)) return *helicopter;
+  throw Error(controller + ": flies only the X-Cell helicopter (heli::Helicopter), whose trims it is designed at; "
+              "this plant is another SdcPlant (n = " + std::to_string(context.plant.state_dim()) +
+              ", m = " + std::to_string(context.plant.input_dim()) + ")");
+}
 
 ControllerRegistry& ControllerRegistry::instance() {
   // A function-local static: registrations run during static initialization of other
@@ -13,20 +28,37 @@ ControllerRegistry& ControllerRegistry::instance() {
   return registry;
 }
 
+ControllerRegistry::OriginScope::OriginScope(std::string origin)
+    : previous_(std::exchange(instance().origin_, std::move(origin))) {}
+
+ControllerRegistry::OriginScope::~OriginScope() { instance().origin_ = std::move(previous_); }
+
 void ControllerRegistry::add(const std::string& name, const std::string& description, ControllerFactory factory) {
   const bool taken = std::any_of(entries_.begin(), entries_.end(), [&](const Entry& e) { return e.name == name; });
   if (taken) throw Error("controller registry: the name '" + name + "' is registered twice");
-  entries_.push_back({name, description, std::move(factory)});
+  entries_.push_back({name, description, origin_, std::move(factory)});
 }
 
-std::unique_ptr<Controller> ControllerRegistry::make(const std::string& name, const YAML::Node& settings,
-                                                     const ControllerContext& context) const {
+const ControllerRegistry::Entry& ControllerRegistry::entry(const std::string& name) const {
   for (const Entry& e : entries_) {
-    if (e.name == name) return e.factory(settings, context);
+    if (e.name == name) return e;
   }
   std::string known;
   for (const auto& n : names()) known += (known.empty() ? "" : ", ") + n;
   throw Error("unknown controller '" + name + "' (known: " + known + ")");
+}
+
+std::unique_ptr<Controller> ControllerRegistry::make(const std::string& name, const YAML::Node& settings,
+                                                     const ControllerContext& context) const {
+  return build(name, settings, context).controller;
+}
+
+BuiltController ControllerRegistry::build(const std::string& name, const YAML::Node& settings,
+                                          const ControllerContext& context) const {
+  const Entry& found = entry(name);
+  const Settings fields(settings);
+  std::unique_ptr<Controller> controller = found.factory(fields, context);
+  return {std::move(controller), fields.resolved()};
 }
 
 std::vector<std::string> ControllerRegistry::names() const {
@@ -36,11 +68,8 @@ std::vector<std::string> ControllerRegistry::names() const {
   return result;
 }
 
-const std::string& ControllerRegistry::description(const std::string& name) const {
-  for (const Entry& e : entries_) {
-    if (e.name == name) return e.description;
-  }
-  throw Error("unknown controller '" + name + "'");
-}
+const std::string& ControllerRegistry::description(const std::string& name) const { return entry(name).description; }
+
+const std::string& ControllerRegistry::origin(const std::string& name) const { return entry(name).origin; }
 
 }  // namespace thetad

@@ -9,21 +9,42 @@
 
 #include "controllers/controller.hpp"
 #include "core/helicopter/helicopter.hpp"
+#include "core/settings.hpp"
 
 namespace thetad {
 
-// What a controller is designed with: the model it knows (nominal parameters, no wind: spec A-27)
-// and the initial state of the run (t0, xa(t0): spec §7.1).
+// What a controller is designed with: the plant it knows (for the helicopter the nominal
+// parameters, no wind: spec A-27), the design defaults its settings start from and the initial
+// state of the run (t0, xa(t0): spec §7.1). θ–D and SDRE need nothing but an SdcPlant; a
+// controller that needs the helicopter's specifics asks helicopter_of().
 struct ControllerContext {
-  const heli::Helicopter& model;
+  const SdcPlant& plant;
+  DesignDefaults defaults;          // plant.design_defaults() unless the caller chose others
   Eigen::VectorXd initial_state;
   double initial_time = 0.0;
+
+  // Keeps a reference to `plant`: it must outlive the context and the controllers built with it.
+  ControllerContext(const SdcPlant& plant, Eigen::VectorXd initial_state, double initial_time = 0.0);
+  ControllerContext(const SdcPlant& plant, DesignDefaults defaults, Eigen::VectorXd initial_state,
+                    double initial_time = 0.0);
 };
 
-// Builds a controller from its settings block (a YAML map; null means all defaults). Unknown or
-// ill-typed fields throw thetad::Error naming the field (and the line, when the node has one).
+// The helicopter behind `context`, for a controller that needs its specifics (trims); throws
+// thetad::Error naming `controller` when the plant is another one.
+const heli::Helicopter& helicopter_of(const ControllerContext& context, const std::string& controller);
+
+// Builds a controller from its settings block. Every field is read through `settings` (a map;
+// null means all defaults), which records the value used, default or given: the registry hands
+// that record back (BuiltController::settings). Unknown or ill-typed fields throw
+// thetad::SettingsError naming the field (and the line, when the node has one).
 using ControllerFactory =
-    std::function<std::unique_ptr<Controller>(const YAML::Node& settings, const ControllerContext& context)>;
+    std::function<std::unique_ptr<Controller>(const Settings& settings, const ControllerContext& context)>;
+
+struct BuiltController {
+  std::unique_ptr<Controller> controller;
+  // Every field as used, defaults included: building again from it gives the same controller.
+  YAML::Node settings;
+};
 
 // The controllers thetad knows by name. Each controller registers itself from its own source file
 // with a static ControllerRegistration, so adding one touches no other file.
@@ -31,20 +52,40 @@ class ControllerRegistry {
  public:
   static ControllerRegistry& instance();
 
+  // While one lives, registrations with instance() record `origin` (e.g. "plugin /path/to/lib.so",
+  // around loading a plug-in) instead of "built-in"; its end restores the origin before it.
+  class OriginScope {
+   public:
+    explicit OriginScope(std::string origin);
+    ~OriginScope();
+    OriginScope(const OriginScope&) = delete;
+    OriginScope& operator=(const OriginScope&) = delete;
+
+   private:
+    std::string previous_;
+  };
+
   void add(const std::string& name, const std::string& description, ControllerFactory factory);
-  // Throws thetad::Error listing the known names when `name` is unknown.
+  // make() and build() throw thetad::Error listing the known names when `name` is unknown.
   std::unique_ptr<Controller> make(const std::string& name, const YAML::Node& settings,
                                    const ControllerContext& context) const;
+  BuiltController build(const std::string& name, const YAML::Node& settings, const ControllerContext& context) const;
   std::vector<std::string> names() const;
   const std::string& description(const std::string& name) const;
+  // "built-in", or the origin of the OriginScope that `name` was registered in.
+  const std::string& origin(const std::string& name) const;
 
  private:
   struct Entry {
     std::string name;
     std::string description;
+    std::string origin;
     ControllerFactory factory;
   };
+  const Entry& entry(const std::string& name) const;
+
   std::vector<Entry> entries_;
+  std::string origin_ = "built-in";
 };
 
 struct ControllerRegistration {

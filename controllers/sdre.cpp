@@ -5,7 +5,6 @@
 #include "controllers/registry.hpp"
 #include "core/settings.hpp"
 #include "core/error.hpp"
-#include "core/helicopter/paper_weights.hpp"
 
 namespace thetad {
 
@@ -128,20 +127,19 @@ std::vector<std::pair<std::string, double>> SdreController::counters() const {
 
 namespace {
 
-std::unique_ptr<Controller> make_sdre(const YAML::Node& node, const ControllerContext& context) {
-  const Settings fields(node);
+std::unique_ptr<Controller> make_sdre(const Settings& fields, const ControllerContext& context) {
   fields.allow_only({"mode", "fixed_point_iterations", "Q", "R"});
   SdreSettings settings;
   settings.mode = fields.choice("mode", "warm", {"cold", "warm"}) == "warm" ? SdreSettings::Mode::warm
                                                                              : SdreSettings::Mode::cold;
   settings.fixed_point_iterations = fields.integer("fixed_point_iterations", settings.fixed_point_iterations, 1);
-  settings.Q = fields.diagonal_weight("Q", heli::paper_state_weights(), Settings::Weight::positive_semidefinite);
-  settings.R = fields.diagonal_weight("R", heli::paper_input_weights(), Settings::Weight::positive_definite);
-  // The fixed point starts from hover thrust at the first sample (spec §7.6).
-  const heli::Parameters& p = context.model.parameters();
-  settings.initial_input = Eigen::VectorXd::Zero(context.model.input_dim());
-  settings.initial_input(heli::kTmr) = p.mass * p.gravity;
-  return std::make_unique<SdreController>(context.model, std::move(settings));
+  // The context's design defaults: for the helicopter the paper's weights, and the fixed point
+  // starts from hover thrust at the first sample (spec §7.6).
+  const DesignDefaults& defaults = context.defaults;
+  settings.Q = fields.diagonal_weight("Q", defaults.state_weights, Settings::Weight::positive_semidefinite);
+  settings.R = fields.diagonal_weight("R", defaults.input_weights, Settings::Weight::positive_definite);
+  settings.initial_input = defaults.input;
+  return std::make_unique<SdreController>(context.plant, std::move(settings));
 }
 
 const ControllerRegistration registration(

@@ -13,7 +13,6 @@
 #include "controllers/registry.hpp"
 #include "core/settings.hpp"
 #include "core/error.hpp"
-#include "core/helicopter/paper_weights.hpp"
 #include "core/riccati.hpp"
 
 namespace thetad {
@@ -38,13 +37,14 @@ Eigen::VectorXd series_parameter(const char* what, const Eigen::VectorXd& given,
   return given;
 }
 
-// The helicopter's defaults live here, in the factory, not in the controller: the paper's weights
-// (Eqs. 33–34) and u0 = [m g, 0, 0, 0, 0], the rotor at hover thrust on the ground (spec §7.1).
+// The design defaults come with the context, not from the controller: for the helicopter the
+// paper's weights (Eqs. 33–34) and u0 = [m g, 0, 0, 0, 0], the rotor at hover thrust on the
+// ground (spec §7.1).
 const ControllerRegistration registration(
     "theta-d", "theta-D series T0 + ... + T_{N-1} around the initial state (paper-spec §5, §7)",
-    [](const YAML::Node& node, const ControllerContext& context) -> std::unique_ptr<Controller> {
-      const Settings settings(node);
+    [](const Settings& settings, const ControllerContext& context) -> std::unique_ptr<Controller> {
       settings.allow_only({"terms", "k", "l", "fixed_point_iterations", "fixed_point_tolerance", "Q", "R"});
+      const DesignDefaults& defaults = context.defaults;
       ThetaDSettings s;
       s.terms = settings.integer("terms", s.terms, 1);
       const Eigen::VectorXd ones = Eigen::VectorXd::Ones(s.terms - 1);
@@ -52,12 +52,10 @@ const ControllerRegistration registration(
       s.l = settings.vector("l", ones, s.terms - 1, 0.0);
       s.fixed_point_iterations = settings.integer("fixed_point_iterations", s.fixed_point_iterations, 1);
       s.fixed_point_tolerance = settings.number("fixed_point_tolerance", s.fixed_point_tolerance, 0.0);
-      s.Q = settings.diagonal_weight("Q", heli::paper_state_weights(), Settings::Weight::positive_semidefinite);
-      s.R = settings.diagonal_weight("R", heli::paper_input_weights(), Settings::Weight::positive_definite);
-      const heli::Parameters& p = context.model.parameters();
-      s.initial_input = Eigen::VectorXd::Zero(context.model.input_dim());
-      s.initial_input[heli::kTmr] = p.mass * p.gravity;
-      return std::make_unique<ThetaDController>(context.model, std::move(s));
+      s.Q = settings.diagonal_weight("Q", defaults.state_weights, Settings::Weight::positive_semidefinite);
+      s.R = settings.diagonal_weight("R", defaults.input_weights, Settings::Weight::positive_definite);
+      s.initial_input = defaults.input;
+      return std::make_unique<ThetaDController>(context.plant, std::move(s));
     });
 
 }  // namespace

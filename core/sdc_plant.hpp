@@ -6,6 +6,13 @@
 
 namespace thetad {
 
+// What a controller designed for this plant starts from where its settings say nothing.
+struct DesignDefaults {
+  Eigen::VectorXd state_weights;  // diagonal of Q (n)
+  Eigen::VectorXd input_weights;  // diagonal of R (m)
+  Eigen::VectorXd input;          // u0: where the first SDC is taken and the fixed point starts (m)
+};
+
 // A plant in state-dependent-coefficient (SDC) form: xdot = f(x, u) = F(x) x + B(x) u, exactly.
 //
 // F and B may also depend on the input through quantities the plant derives from it (the
@@ -36,6 +43,12 @@ class SdcPlant {
                                Eigen::Ref<Eigen::VectorXd> v) const {
     (void)reference;
     v = measured;
+  }
+
+  // The plant knows what a sensible design starts from (the helicopter: the paper's weights and
+  // hover thrust); a plant that does not say weighs every state and input alike around u0 = 0.
+  virtual DesignDefaults design_defaults() const {
+    return {Eigen::VectorXd::Ones(state_dim()), Eigen::VectorXd::Ones(input_dim()), Eigen::VectorXd::Zero(input_dim())};
   }
 
   // Writes every entry of F (n x n) and B (n x m), zeros included.

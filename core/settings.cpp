@@ -27,10 +27,10 @@ std::string kind_of(const YAML::Node& node) {
   return "nothing";
 }
 
-std::string list(std::initializer_list<std::string_view> names) {
-  std::string joined;
-  for (const auto name : names) joined += (joined.empty() ? "" : ", ") + std::string(name);
-  return joined;
+std::string joined(std::initializer_list<std::string_view> names) {
+  std::string result;
+  for (const auto name : names) result += (result.empty() ? "" : ", ") + std::string(name);
+  return result;
 }
 
 std::string text(double value) {
@@ -77,7 +77,7 @@ void Settings::allow_only(std::initializer_list<std::string_view> allowed) const
   for (const auto& item : node_) {
     const std::string key = item.first.Scalar();
     if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
-      throw SettingsError(field_name(key), "unknown field (allowed: " + list(allowed) + ")", item.first.Mark());
+      throw SettingsError(field_name(key), "unknown field (allowed: " + joined(allowed) + ")", item.first.Mark());
     }
   }
 }
@@ -166,7 +166,7 @@ std::string Settings::choice(const std::string& key, const std::string& fallback
                              std::initializer_list<std::string_view> choices) const {
   const std::string value = string(key, fallback);
   if (std::find(choices.begin(), choices.end(), value) == choices.end()) {
-    throw error(key, "expected one of " + list(choices) + ", got '" + value + "'");
+    throw error(key, "expected one of " + joined(choices) + ", got '" + value + "'");
   }
   return value;
 }
@@ -181,11 +181,25 @@ Eigen::VectorXd Settings::vector(const std::string& key, const Eigen::VectorXd& 
   if (static_cast<Eigen::Index>(node.size()) != size) {
     throw error(key, "expected " + std::to_string(size) + " entries, got " + std::to_string(node.size()));
   }
-  Eigen::VectorXd values(size);
-  for (Eigen::Index i = 0; i < size; ++i) {
-    values(i) = entry(node[static_cast<std::size_t>(i)], field_name(key) + "[" + std::to_string(i) + "]", min, max);
+  const std::vector<double> values = entries(key, min, max);
+  return recorded(key, Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(values.data(), size)));
+}
+
+std::vector<double> Settings::list(const std::string& key, const std::vector<double>& fallback, double min,
+                                   double max) const {
+  if (!has(key)) return recorded(key, fallback);
+  const YAML::Node node = node_[key];
+  if (!node.IsSequence()) throw error(key, "expected a sequence of numbers, got " + kind_of(node));
+  return recorded(key, entries(key, min, max));
+}
+
+std::vector<double> Settings::entries(const std::string& key, double min, double max) const {
+  const YAML::Node node = node_[key];
+  std::vector<double> values(node.size());
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    values[i] = entry(node[i], field_name(key) + "[" + std::to_string(i) + "]", min, max);
   }
-  return recorded(key, std::move(values));
+  return values;
 }
 
 Eigen::MatrixXd Settings::diagonal_weight(const std::string& key, const Eigen::VectorXd& fallback_diagonal,

@@ -95,6 +95,9 @@ class Settings {
   // A sequence of exactly `size` finite numbers, each in [min, max].
   Eigen::VectorXd vector(const std::string& key, const Eigen::VectorXd& fallback, Eigen::Index size,
                          double min = -inf(), double max = inf()) const;
+  // A sequence of any length (empty too) of finite numbers, each in [min, max].
+  std::vector<double> list(const std::string& key, const std::vector<double>& fallback, double min = -inf(),
+                           double max = inf()) const;
 
   // A diagonal weight matrix given by its diagonal (`Q: [1e4, 2e4, ...]`) of fallback.size()
   // entries: every entry >= 0 for a state weight (Q), > 0 for an input weight (R) so that R is
@@ -122,6 +125,8 @@ class Settings {
   static constexpr double inf() { return std::numeric_limits<double>::infinity(); }
   std::string field_name(const std::string& key) const;
   double entry(const YAML::Node& node, const std::string& field, double min, double max) const;
+  // The entries of the sequence under `key`, each checked by entry().
+  std::vector<double> entries(const std::string& key, double min, double max) const;
 
   YAML::Node node_;
   std::string path_;

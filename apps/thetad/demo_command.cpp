@@ -7,7 +7,6 @@
 
 #include "core/atomic_file.hpp"
 #include "core/helicopter/helicopter.hpp"
-#include "core/helicopter/paper_weights.hpp"
 #include "core/riccati.hpp"
 #include "core/trim.hpp"
 
@@ -29,11 +28,11 @@ int run_demo(const std::filesystem::path& out) {
   // Spec §7.1: at rest on the ground, s = 1, rotor speed from T_mr = m g.
   Eigen::VectorXd x0 = Eigen::VectorXd::Zero(kStateDim);
   x0(kS) = 1.0;
-  Eigen::VectorXd u0 = Eigen::VectorXd::Zero(kInputDim);
-  u0(kTmr) = plant.parameters().mass * plant.parameters().gravity;
+  const DesignDefaults defaults = plant.design_defaults();  // the paper's Q, R and u0 = [m g, 0, 0, 0, 0]
+  const Eigen::VectorXd& u0 = defaults.input;
   const auto [A0, g0] = plant.sdc(x0, u0);
-  const Eigen::MatrixXd Q = paper_state_weights().asDiagonal();
-  const Eigen::MatrixXd R = paper_input_weights().asDiagonal();
+  const Eigen::MatrixXd Q = defaults.state_weights.asDiagonal();
+  const Eigen::MatrixXd R = defaults.input_weights.asDiagonal();
 
   std::printf("thetad demo: the paper-sized Riccati problem at the initial state (n = %d, m = %d)\n",
               kStateDim, kInputDim);

@@ -10,7 +10,6 @@
 
 #include "controllers/lqr_scheduled.hpp"
 #include "core/error.hpp"
-#include "core/helicopter/paper_weights.hpp"
 #include "core/settings.hpp"
 #include "scenarios/scenario.hpp"
 
@@ -33,7 +32,7 @@ int run_design_lqr(const DesignLqrArguments& arguments) {
   if (!arguments.grid.empty()) {
     grid = with_settings_source(arguments.grid.string(), [&] {
       try {
-        return read_lqr_grid(YAML::LoadFile(arguments.grid.string()));
+        return read_lqr_grid(Settings(YAML::LoadFile(arguments.grid.string())));
       } catch (const YAML::Exception& error) {
         throw Error(arguments.grid.string() + ":" + std::to_string(error.mark.line + 1) + ": invalid YAML: " + error.msg);
       }
@@ -47,8 +46,9 @@ int run_design_lqr(const DesignLqrArguments& arguments) {
   const bool live = isatty(fileno(stderr)) == 1 && std::getenv("CI") == nullptr;
   const auto start = std::chrono::steady_clock::now();
   std::size_t governor_points = 0;
+  const DesignDefaults defaults = model.design_defaults();
   const LqrScheduleTable table = design_lqr_schedule(
-      model, grid, heli::paper_state_weights(), heli::paper_input_weights(),
+      model, grid, defaults.state_weights, defaults.input_weights,
       [&](std::size_t done, std::size_t total, const LqrSchedulePoint& point) {
         const bool governor = point.rotor_speed_model == heli::ModelOptions::RotorSpeedModel::governor;
         governor_points += governor ? 1 : 0;

@@ -50,8 +50,8 @@ void ExamplePidController::control(double, const Eigen::Ref<const Eigen::VectorX
 
 namespace {
 
-std::unique_ptr<Controller> make_example_pid(const YAML::Node& node, const ControllerContext& context) {
-  const Settings fields(node);
+std::unique_ptr<Controller> make_example_pid(const Settings& fields, const ControllerContext& context) {
+  const Helicopter& model = helicopter_of(context, "example-pid");
   fields.allow_only({"position_gains", "altitude_gains", "roll_gains", "pitch_gains", "yaw_gains"});
   PidGains gains;
   gains.position = fields.vector("position_gains", gains.position, 3, 0.0);
@@ -62,8 +62,8 @@ std::unique_ptr<Controller> make_example_pid(const YAML::Node& node, const Contr
   // Hover at the start's altitude and heading: the trim gives the attitude and inputs that hold it.
   const Eigen::VectorXd& x0 = context.initial_state;
   if (x0.size() != kStateDim) throw Error("example-pid: initial state has " + std::to_string(x0.size()) + " entries, not 18");
-  const Trim hover = find_trim(context.model, TrimCondition::hover(-x0(kZp), x0(kPsi)));
-  const Parameters& p = context.model.parameters();
+  const Trim hover = find_trim(model, TrimCondition::hover(-x0(kZp), x0(kPsi)));
+  const Parameters& p = model.parameters();
   return std::make_unique<ExamplePidController>(hover, std::move(gains), p.mass, p.gravity);
 }
 

@@ -6,6 +6,7 @@
 
 #include "core/error.hpp"
 #include "core/helicopter/forces.hpp"
+#include "core/helicopter/paper_weights.hpp"
 #include "core/helicopter/rotor_speed.hpp"
 
 namespace thetad::heli {
@@ -110,6 +111,12 @@ void fill_sdc(const Parameters& p, const Forces& f, const Eigen::Ref<const Eigen
 
 Helicopter::Helicopter(const Parameters& parameters, const ModelOptions& options)
     : parameters_(parameters), options_(options) {}
+
+DesignDefaults Helicopter::design_defaults() const {
+  Eigen::VectorXd hover_thrust = Eigen::VectorXd::Zero(kInputDim);
+  hover_thrust(kTmr) = parameters_.mass * parameters_.gravity;
+  return {paper_state_weights(), paper_input_weights(), hover_thrust};
+}
 
 double Helicopter::rotor_speed(const Eigen::Ref<const Eigen::VectorXd>& x, double thrust) const {
   require_size("state", x.rows(), x.cols(), kStateDim, 1);

@@ -44,6 +44,10 @@ class Helicopter final : public SdcPlant {
   void tracking_vector(const Eigen::Ref<const Eigen::VectorXd>& measured, const Reference& reference,
                        Eigen::Ref<Eigen::VectorXd> v) const override;
 
+  // The paper's weights (Eqs. 33-34, paper_weights.hpp) and u0 = [m g, 0, 0, 0, 0], the rotor at
+  // hover thrust (spec §7.1, §7.6).
+  DesignDefaults design_defaults() const override;
+
   // F and B at a given main-rotor speed (what the controller's fixed point of spec §7.6 iterates on).
   void sdc_at_rotor_speed(const Eigen::Ref<const Eigen::VectorXd>& x, double rotor_speed,
                           Eigen::Ref<Eigen::MatrixXd> F, Eigen::Ref<Eigen::MatrixXd> B) const;

@@ -10,7 +10,6 @@
 #include <utility>
 
 #include "core/error.hpp"
-#include "core/helicopter/paper_weights.hpp"
 #include "core/helicopter/state.hpp"
 #include "core/helicopter/uncertainty.hpp"
 
@@ -172,8 +171,10 @@ RunResult simulate(ControlLaw& law, const ReferenceTrajectory& reference, const 
   Helicopter plant(settings.parameter_uncertainty ? drawn.parameters : nominal, options);
   const NoiseLevels levels = NoiseLevels::from_uncertainty_table();
   WindGust gust(settings.wind_gust, period);
-  const Eigen::VectorXd state_weights = paper_state_weights();
-  const Eigen::VectorXd input_weights = paper_input_weights();
+  // J of Eq. (14) with the weights the controllers are designed with (the paper's, Eqs. 33-34).
+  const DesignDefaults design = plant.design_defaults();
+  const Eigen::VectorXd& state_weights = design.state_weights;
+  const Eigen::VectorXd& input_weights = design.input_weights;
 
   RunResult result;
   RunSummary& summary = result.summary;

@@ -14,7 +14,6 @@
 #include "controllers/lqr_scheduled.hpp"
 #include "controllers/registry.hpp"
 #include "core/error.hpp"
-#include "core/helicopter/paper_weights.hpp"
 #include "core/settings.hpp"
 #include "tests/controllers/hover_recovery.hpp"
 #include "tests/heap_counter.hpp"
@@ -34,8 +33,9 @@ const heli::Helicopter& model() {
 }
 
 const std::shared_ptr<const LqrScheduleTable>& test_table() {
-  static const auto table = std::make_shared<const LqrScheduleTable>(design_lqr_schedule(
-      model(), read_lqr_grid(YAML::Load(kTestGrid)), heli::paper_state_weights(), heli::paper_input_weights()));
+  static const auto table = std::make_shared<const LqrScheduleTable>(
+      design_lqr_schedule(model(), read_lqr_grid(Settings(YAML::Load(kTestGrid))),
+                          model().design_defaults().state_weights, model().design_defaults().input_weights));
   return table;
 }
 
@@ -46,7 +46,8 @@ std::filesystem::path temporary_file(const std::string& name) {
 TEST(LqrScheduled, GainAtAGridPointIsThePlainLqrDesignedThere) {
   LqrScheduledController controller(model(), test_table());
   const LqrScheduleTable& table = *test_table();
-  LqrSettings settings{heli::paper_state_weights().asDiagonal(), heli::paper_input_weights().asDiagonal(), 17};
+  const DesignDefaults defaults = model().design_defaults();
+  LqrSettings settings{defaults.state_weights.asDiagonal(), defaults.input_weights.asDiagonal(), 17};
   for (const std::size_t index : {std::size_t{4}, table.index(1, 1, 2), table.index(2, 2, 0), table.index(2, 3, 1)}) {
     const LqrSchedulePoint& point = table.points[index];
     SCOPED_TRACE("speed " + std::to_string(point.speed) + ", course " + std::to_string(point.course) + ", climb " +
@@ -66,8 +67,7 @@ TEST(LqrScheduled, GainAtAGridPointIsThePlainLqrDesignedThere) {
   // The one-point schedule is the hover LQR of the "lqr" controller.
   LqrScheduledController hover(
       model(), std::make_shared<LqrScheduleTable>(design_lqr_schedule(model(), LqrScheduleGrid::hover(),
-                                                                      heli::paper_state_weights(),
-                                                                      heli::paper_input_weights())));
+                                                                      defaults.state_weights, defaults.input_weights)));
   const LqrController plain(model(), operating_point(model(), testing::hover_trim_at_3_5_m()), settings);
   EXPECT_LE((hover.gain() - plain.design().K).cwiseAbs().maxCoeff(), 1e-6 * plain.design().K.cwiseAbs().maxCoeff());
 }

@@ -1,10 +1,14 @@
 #include <gtest/gtest.h>
 #include <gmock/gmock.h>
 
+#include <cstring>
 #include <string>
+#include <vector>
 
+#include "controllers/lqr_scheduled.hpp"
 #include "controllers/registry.hpp"
 #include "core/settings.hpp"
+#include "core/test_plants.hpp"
 #include "tests/controllers/hover_recovery.hpp"
 
 namespace thetad {
@@ -63,25 +67,170 @@ TEST(ControllerRegistry, AWrongWeightLengthReadsLikeTheCommandLineMessage) {
   }
 }
 
-TEST(ControllerRegistry, ClonesFlyLikeTheOriginal) {
-  const heli::Helicopter model;
+// lqr-scheduled designs its table when it is built: a few seconds for the envelope, ~0.1 s here.
+YAML::Node quick_settings(const std::string& name) {
+  return name == "lqr-scheduled" ? YAML::Load("grid: {speeds: [0, 2], courses_deg: [0, 90], climb_rates: [0]}")
+                                 : YAML::Node();
+}
+
+// One control step from the hover trim displaced by 0.3 m, after reset.
+Eigen::VectorXd first_step(Controller& controller) {
   const Trim& hover = testing::hover_trim_at_3_5_m();
   Eigen::VectorXd x = hover.state;
   x(heli::kXp) += 0.3;
   x(heli::kV) = 0.2;
   Reference reference;
   reference.position = hover.state.segment<3>(heli::kXp);
+  Eigen::VectorXd u(heli::kInputDim);
+  controller.reset(hover.state, 0.0);
+  controller.control(0.0, x, reference, u);
+  return u;
+}
+
+TEST(ControllerRegistry, ClonesFlyLikeTheOriginal) {
+  const heli::Helicopter model;
   for (const std::string name : {"sdre", "lqr", "example-pid"}) {
     auto original = ControllerRegistry::instance().make(name, {}, hover_context(model));
     auto copy = original->clone();
-    Eigen::VectorXd a(heli::kInputDim), b(heli::kInputDim);
-    original->reset(hover.state, 0.0);
-    copy->reset(hover.state, 0.0);
-    original->control(0.0, x, reference, a);
-    copy->control(0.0, x, reference, b);
-    EXPECT_EQ(a, b) << name;
+    EXPECT_EQ(first_step(*original), first_step(*copy)) << name;
     EXPECT_EQ(copy->name(), original->name());
   }
+}
+
+// u = −R⁻¹ B(x)ᵀ P x on the companion oscillator, with P the closed-form SDRE solution.
+double companion_input(const CompanionPlant& plant, const Eigen::Vector2d& x, double q1, double q2, double r) {
+  const SdcPlant::Coefficients sdc = plant.sdc(x, Eigen::VectorXd::Zero(1));
+  return -(sdc.B.transpose() * CompanionPlant::sdre_solution(x, q1, q2, r) * x)(0) / r;
+}
+
+TEST(ControllerRegistry, ThetaDAndSdreFlyAPlantThatIsNotTheHelicopter) {
+  const CompanionPlant plant;
+  const Eigen::Vector2d x0(0.4, -0.3), x(-0.7, 0.5);
+  const ControllerContext context{plant, x0};
+  // The plant says nothing of its design: Q = I, R = 1, u0 = 0.
+  EXPECT_EQ(context.defaults.state_weights, Eigen::VectorXd::Ones(2));
+  EXPECT_EQ(context.defaults.input_weights, Eigen::VectorXd::Ones(1));
+  EXPECT_EQ(context.defaults.input, Eigen::VectorXd::Zero(1));
+  Eigen::VectorXd u(1);
+
+  // θ–D at its initial state is T0 = P(x0) (Ã = 0, g̃ = 0: every later term vanishes).
+  auto theta_d = ControllerRegistry::instance().make("theta-d", {}, context);
+  theta_d->reset(x0, 0.0);
+  theta_d->control(0.0, x0, Reference{}, u);
+  EXPECT_NEAR(u(0), companion_input(plant, x0, 1.0, 1.0, 1.0), 1e-12);
+
+  // SDRE with the caller's own defaults solves the CARE of those weights at every state.
+  const ControllerContext weighted{plant, DesignDefaults{Eigen::Vector2d(2.0, 0.5), Eigen::VectorXd::Constant(1, 3.0),
+                                                         Eigen::VectorXd::Zero(1)}, x0};
+  for (const std::string mode : {"cold", "warm"}) {
+    auto sdre = ControllerRegistry::instance().make("sdre", YAML::Load("mode: " + mode), weighted);
+    sdre->reset(x0, 0.0);
+    sdre->control(0.0, x0, Reference{}, u);
+    EXPECT_NEAR(u(0), companion_input(plant, x0, 2.0, 0.5, 3.0), 1e-12) << mode;
+    sdre->control(1e-3, x, Reference{}, u);
+    EXPECT_NEAR(u(0), companion_input(plant, x, 2.0, 0.5, 3.0), 1e-12) << mode;
+  }
+}
+
+TEST(ControllerRegistry, ControllersThatTrimTheHelicopterRefuseAnotherPlant) {
+  const CompanionPlant plant;
+  const ControllerContext context{plant, Eigen::Vector2d(0.4, -0.3)};
+  for (const std::string name : {"lqr", "lqr-scheduled", "example-pid"}) {
+    EXPECT_THAT([&] { ControllerRegistry::instance().make(name, {}, context); },
+                ::testing::ThrowsMessage<Error>(HasSubstr(
+                    name + ": flies only the X-Cell helicopter (heli::Helicopter), whose trims it is designed at; "
+                           "this plant is another SdcPlant (n = 2, m = 1)")))
+        << name;
+  }
+}
+
+TEST(ControllerRegistry, TheSettingsAsUsedRebuildTheSameController) {
+  const heli::Helicopter model;
+  const ControllerRegistry& registry = ControllerRegistry::instance();
+  for (const std::string& name : registry.names()) {
+    const BuiltController built = registry.build(name, quick_settings(name), hover_context(model));
+    const BuiltController rebuilt = registry.build(name, built.settings, hover_context(model));
+    EXPECT_GT(built.settings.size(), 0u) << name;
+    EXPECT_EQ(YAML::Dump(rebuilt.settings), YAML::Dump(built.settings)) << name;
+    const Eigen::VectorXd u = first_step(*built.controller), again = first_step(*rebuilt.controller);
+    ASSERT_EQ(u.size(), again.size()) << name;
+    EXPECT_EQ(std::memcmp(u.data(), again.data(), sizeof(double) * static_cast<std::size_t>(u.size())), 0)
+        << name << ": " << u.transpose() << " rebuilt: " << again.transpose();
+  }
+}
+
+TEST(ControllerRegistry, TheSettingsAsUsedHoldEveryFieldGivenOrDefault) {
+  const heli::Helicopter model;
+  const ControllerRegistry& registry = ControllerRegistry::instance();
+  const YAML::Node theta_d = registry.build("theta-d", YAML::Load("{terms: 2, k: [0.5]}"), hover_context(model)).settings;
+  EXPECT_EQ(theta_d["terms"].as<int>(), 2);
+  EXPECT_EQ(theta_d["k"].as<std::vector<double>>(), std::vector<double>{0.5});
+  EXPECT_EQ(theta_d["l"].as<std::vector<double>>(), std::vector<double>{1.0});
+  EXPECT_EQ(theta_d["fixed_point_iterations"].as<int>(), 3);
+  EXPECT_EQ(theta_d["fixed_point_tolerance"].as<double>(), 1e-6);
+  const DesignDefaults defaults = model.design_defaults();
+  EXPECT_EQ(theta_d["Q"].as<std::vector<double>>(),
+            std::vector<double>(defaults.state_weights.begin(), defaults.state_weights.end()));
+  EXPECT_EQ(theta_d["R"].as<std::vector<double>>(),
+            std::vector<double>(defaults.input_weights.begin(), defaults.input_weights.end()));
+  EXPECT_EQ(theta_d.size(), 7u);
+
+  const YAML::Node scheduled =
+      registry.build("lqr-scheduled", YAML::Load("grid: {speeds: [0, 2], courses_deg: [90]}"), hover_context(model))
+          .settings;
+  EXPECT_EQ(scheduled["grid"]["speeds"].as<std::vector<double>>(), (std::vector<double>{0.0, 2.0}));
+  EXPECT_EQ(scheduled["grid"]["courses_deg"].as<std::vector<double>>(), std::vector<double>{90.0});
+  EXPECT_EQ(scheduled["grid"]["climb_rates"].as<std::vector<double>>(), (std::vector<double>{-1.0, 0.0, 1.0}));
+  EXPECT_EQ(scheduled["grid"]["altitude"].as<double>(), 3.5);
+  EXPECT_EQ(scheduled["velocity_time_constant"].as<double>(), LqrScheduledController::kDefaultVelocityTimeConstant);
+  EXPECT_EQ(scheduled["Q"].size(), 18u);
+  EXPECT_EQ(scheduled["R"].size(), 5u);
+  EXPECT_FALSE(scheduled["table"]) << "a designed schedule has no table file";
+}
+
+// u = −gain · (the first m states): a controller as small as a plug-in's, to register from a test.
+class ProportionalController final : public Controller {
+ public:
+  ProportionalController(double gain, Eigen::Index inputs) : gain_(gain), inputs_(inputs) {}
+  std::string name() const override { return "proportional"; }
+  std::unique_ptr<Controller> clone() const override { return std::make_unique<ProportionalController>(*this); }
+  void reset(const Eigen::VectorXd&, double) override {}
+  void control(double, const Eigen::Ref<const Eigen::VectorXd>& x, const Reference&,
+               Eigen::Ref<Eigen::VectorXd> u) override {
+    u = -gain_ * x.head(inputs_);
+  }
+
+ private:
+  double gain_;
+  Eigen::Index inputs_;
+};
+
+std::unique_ptr<Controller> make_proportional(const Settings& settings, const ControllerContext& context) {
+  settings.allow_only({"gain"});
+  return std::make_unique<ProportionalController>(settings.number("gain", 1.0), context.plant.input_dim());
+}
+
+// Last in this file: it adds controllers to the registry for good (well-behaved ones, should the
+// tests run in another order).
+TEST(ControllerRegistry, ARegistrationRecordsTheOriginItWasMadeIn) {
+  ControllerRegistry& registry = ControllerRegistry::instance();
+  for (const std::string& name : registry.names()) EXPECT_EQ(registry.origin(name), "built-in") << name;
+  {
+    const ControllerRegistry::OriginScope outer("plugin /path/to/libouter.so");
+    registry.add("origin-outer", "registered in a scope", make_proportional);
+    {
+      const ControllerRegistry::OriginScope inner("plugin /path/to/libinner.so");
+      const ControllerRegistration registration("origin-inner", "registered in a nested scope", make_proportional);
+    }
+    registry.add("origin-outer-again", "registered after the nested scope ended", make_proportional);
+  }
+  registry.add("origin-after", "registered after every scope ended", make_proportional);
+  EXPECT_EQ(registry.origin("origin-outer"), "plugin /path/to/libouter.so");
+  EXPECT_EQ(registry.origin("origin-inner"), "plugin /path/to/libinner.so");
+  EXPECT_EQ(registry.origin("origin-outer-again"), "plugin /path/to/libouter.so");
+  EXPECT_EQ(registry.origin("origin-after"), "built-in");
+  EXPECT_THAT([&] { registry.origin("nonesuch"); },
+              ::testing::ThrowsMessage<Error>(HasSubstr("unknown controller 'nonesuch' (known: ")));
 }
 
 }  // namespace

@@ -32,10 +32,10 @@ double control_at(SdreController& sdre, double t, double x) {
 SdreSettings paper_settings(const heli::Helicopter& model, SdreSettings::Mode mode) {
   SdreSettings settings;
   settings.mode = mode;
-  settings.Q = heli::paper_state_weights().asDiagonal();
-  settings.R = heli::paper_input_weights().asDiagonal();
-  settings.initial_input = Eigen::VectorXd::Zero(heli::kInputDim);
-  settings.initial_input(heli::kTmr) = model.parameters().mass * model.parameters().gravity;
+  const DesignDefaults defaults = model.design_defaults();
+  settings.Q = defaults.state_weights.asDiagonal();
+  settings.R = defaults.input_weights.asDiagonal();
+  settings.initial_input = defaults.input;
   return settings;
 }
 

@@ -20,7 +20,6 @@
 #include "controllers/registry.hpp"
 #include "core/error.hpp"
 #include "core/helicopter/helicopter.hpp"
-#include "core/helicopter/paper_weights.hpp"
 #include "core/riccati.hpp"
 #include "core/test_plants.hpp"
 #include "tests/heap_counter.hpp"
@@ -246,10 +245,10 @@ TEST(ThetaDGeneric, RejectsSettingsThatDoNotFitThePlant) {
 
 struct HelicopterFixture : ::testing::Test {
   heli::Helicopter model;
-  MatrixXd Q = heli::paper_state_weights().asDiagonal();
-  MatrixXd R = heli::paper_input_weights().asDiagonal();
+  MatrixXd Q = model.design_defaults().state_weights.asDiagonal();
+  MatrixXd R = model.design_defaults().input_weights.asDiagonal();
   VectorXd rest = VectorXd::Unit(heli::kStateDim, heli::kS);  // on the ground at rest, s = 1
-  VectorXd hover_thrust = VectorXd::Unit(heli::kInputDim, heli::kTmr) * (model.parameters().mass * model.parameters().gravity);
+  VectorXd hover_thrust = model.design_defaults().input;
 
   ThetaDSettings settings(int terms) {
     ThetaDSettings s = plain_series(Q, R, terms);

@@ -18,6 +18,7 @@
 
 #include "core/error.hpp"
 #include "core/helicopter/forces.hpp"
+#include "core/helicopter/paper_weights.hpp"
 #include "tests/heap_counter.hpp"
 
 namespace thetad::heli {
@@ -516,6 +517,17 @@ TEST(HelicopterGovernor, RotorSpeedIsNominal) {
   const Helicopter heli(kNominal, options);
   EXPECT_EQ(heli.rotor_speed(rest_state(), 10.0), kNominal.omega_nom);
   EXPECT_EQ(heli.rotor_speed(rest_state(), -3.0), kNominal.omega_nom);
+}
+
+TEST(HelicopterDesignDefaults, ThePaperWeightsAndHoverThrust) {
+  Parameters heavier = kNominal;
+  heavier.mass = 9.0;
+  const DesignDefaults defaults = Helicopter(heavier).design_defaults();
+  EXPECT_EQ(defaults.state_weights, paper_state_weights());
+  EXPECT_EQ(defaults.input_weights, paper_input_weights());
+  Vector5 hover_thrust = Vector5::Zero();
+  hover_thrust[kTmr] = 9.0 * kNominal.gravity;
+  EXPECT_EQ(defaults.input, Eigen::VectorXd(hover_thrust));
 }
 
 TEST(ModelOptionsStrings, RoundTripAndErrors) {

@@ -2,6 +2,7 @@
 #include <gmock/gmock.h>
 
 #include <string>
+#include <vector>
 
 #include "core/settings.hpp"
 
@@ -151,6 +152,23 @@ TEST(Settings, ResolvedHoldsEveryFieldReadWithTheValueUsed) {
   EXPECT_EQ(grid.resolved().size(), 6u);
   // A fresh block records nothing it was not asked for.
   EXPECT_EQ(Settings(block("  gain: 1\n")).resolved().size(), 0u);
+}
+
+TEST(Settings, AListTakesAnyLengthAndIsRecorded) {
+  const Settings fields(block("  speeds: [0, 2.5, 4]\n  none: []\n  bad: [1, x]\n  scalar: 3\n"));
+  EXPECT_EQ(fields.list("speeds", {}), (std::vector<double>{0.0, 2.5, 4.0}));
+  EXPECT_TRUE(fields.list("none", {1.0}).empty());
+  EXPECT_EQ(fields.list("absent", {1.0, 2.0}), (std::vector<double>{1.0, 2.0}));
+  const YAML::Node resolved = fields.resolved();
+  EXPECT_EQ(resolved["speeds"].as<std::vector<double>>(), (std::vector<double>{0.0, 2.5, 4.0}));
+  EXPECT_TRUE(resolved["none"].IsSequence());
+  EXPECT_EQ(resolved["none"].size(), 0u);
+  EXPECT_EQ(resolved["absent"].as<std::vector<double>>(), (std::vector<double>{1.0, 2.0}));
+  expect_error(error_of([&] { fields.list("bad", {}); }), "4:12: field 'bad[1]': expected a number, got 'x'");
+  expect_error(error_of([&] { fields.list("scalar", {}); }),
+               "5:11: field 'scalar': expected a sequence of numbers, got '3'");
+  expect_error(error_of([&] { fields.list("speeds", {}, 0.0, 3.0); }),
+               "2:20: field 'speeds[2]': expected a number in [0, 3], got 4");
 }
 
 TEST(Settings, ANestedBlockMustBeAMapAndNamesItsPath) {

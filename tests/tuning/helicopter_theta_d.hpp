@@ -20,11 +20,7 @@ namespace thetad::testing {
 struct HelicopterThetaD {
   heli::Helicopter model{heli::Parameters::nominal(), heli::ModelOptions::resolved()};
   Eigen::VectorXd x0 = load_scenario(THETAD_SOURCE_DIR "/scenarios/scenario-1.yaml").initial_state;
-  Eigen::VectorXd hover_input = [this] {
-    Eigen::VectorXd u = Eigen::VectorXd::Zero(model.input_dim());
-    u[heli::kTmr] = model.parameters().mass * model.parameters().gravity;
-    return u;
-  }();
+  Eigen::VectorXd hover_input = model.design_defaults().input;
 
   // Reset at x0, t0 = 0; empty k, l: the paper's 1.
   ThetaDController make(int terms, const Eigen::VectorXd& k = {}, const Eigen::VectorXd& l = {}) const {
