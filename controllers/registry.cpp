@@ -29,13 +29,29 @@ ControllerRegistry& ControllerRegistry::instance() {
 }
 
 ControllerRegistry::OriginScope::OriginScope(std::string origin)
-    : previous_(std::exchange(instance().origin_, std::move(origin))) {}
+    : previous_(std::exchange(instance().origin_, std::move(origin))), previously_scoped_(std::exchange(instance().scoped_, true)) {}
 
-ControllerRegistry::OriginScope::~OriginScope() { instance().origin_ = std::move(previous_); }
+ControllerRegistry::OriginScope::~OriginScope() {
+  instance().origin_ = std::move(previous_);
+  instance().scoped_ = previously_scoped_;
+}
+
+std::vector<std::string> ControllerRegistry::take_refusals() { return std::exchange(refusals_, {}); }
 
 void ControllerRegistry::add(const std::string& name, const std::string& description, ControllerFactory factory) {
-  const bool taken = std::any_of(entries_.begin(), entries_.end(), [&](const Entry& e) { return e.name == name; });
-  if (taken) throw Error("controller registry: the name '" + name + "' is registered twice");
+  const auto same = [&](const Entry& e) { return e.name == name; };
+  const auto taken = std::find_if(entries_.begin(), entries_.end(), same);
+  if (taken != entries_.end()) {
+    const std::string refusal = "controller registry: the name '" + name + "' is registered twice (" + taken->origin +
+                                " and " + origin_ + ")";
+    // Inside an OriginScope the registration runs in a plug-in's static initialization, where an
+    // exception would end the program: the loader reports it (take_refusals) instead.
+    if (scoped_) {
+      refusals_.push_back(refusal);
+      return;
+    }
+    throw Error(refusal);
+  }
   entries_.push_back({name, description, origin_, std::move(factory)});
 }
 

@@ -63,6 +63,7 @@ class ControllerRegistry {
 
    private:
     std::string previous_;
+    bool previously_scoped_;
   };
 
   void add(const std::string& name, const std::string& description, ControllerFactory factory);
@@ -74,6 +75,9 @@ class ControllerRegistry {
   const std::string& description(const std::string& name) const;
   // "built-in", or the origin of the OriginScope that `name` was registered in.
   const std::string& origin(const std::string& name) const;
+  // The registrations refused inside an OriginScope since the last call (a name already taken),
+  // as messages; outside one a refusal throws from add().
+  std::vector<std::string> take_refusals();
 
  private:
   struct Entry {
@@ -86,6 +90,8 @@ class ControllerRegistry {
 
   std::vector<Entry> entries_;
   std::string origin_ = "built-in";
+  bool scoped_ = false;
+  std::vector<std::string> refusals_;
 };
 
 struct ControllerRegistration {

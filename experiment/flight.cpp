@@ -51,11 +51,10 @@ std::string Flight::disturbances() const {
 }
 
 PreparedController Flight::prepare(const ControllerSpec& spec) const {
-  const ControllerContext context{model_, scenario_.initial_state, 0.0};
-  auto make = [&] { return ControllerRegistry::instance().make(spec.controller, spec.settings, context); };
-  PreparedController prepared{spec, spec.settings_source.empty() ? make() : with_settings_source(spec.settings_source, make),
-                              spec.settings};
-  return prepared;
+  const ControllerContext context(model_, scenario_.initial_state, 0.0);
+  auto build = [&] { return ControllerRegistry::instance().build(spec.controller, spec.settings, context); };
+  BuiltController built = spec.settings_source.empty() ? build() : with_settings_source(spec.settings_source, build);
+  return {spec, std::move(built.controller), built.settings};
 }
 
 RunResult Flight::fly(PreparedController& prepared, Progress* progress, const std::string& heading) const {

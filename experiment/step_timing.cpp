@@ -14,35 +14,28 @@ namespace thetad {
 
 namespace {
 
-// Flies like the wrapped controller and keeps what every `every`-th control() call received.
+// Flies like the wrapped controller and keeps what every control() call received.
 class SampleRecorder final : public Controller {
  public:
-  SampleRecorder(std::unique_ptr<Controller> inner, int every, RecordedSamples& samples)
-      : inner_(std::move(inner)), every_(every), samples_(&samples) {}
+  SampleRecorder(std::unique_ptr<Controller> inner, RecordedSamples& samples)
+      : inner_(std::move(inner)), samples_(&samples) {}
 
   std::string name() const override { return inner_->name(); }
   std::unique_ptr<Controller> clone() const override {
-    return std::make_unique<SampleRecorder>(inner_->clone(), every_, *samples_);
+    return std::make_unique<SampleRecorder>(inner_->clone(), *samples_);
   }
-  void reset(const Eigen::VectorXd& x0, double t0) override {
-    inner_->reset(x0, t0);
-    count_ = 0;
-  }
+  void reset(const Eigen::VectorXd& x0, double t0) override { inner_->reset(x0, t0); }
   void control(double t, const Eigen::Ref<const Eigen::VectorXd>& measured_state, const Reference& reference,
                Eigen::Ref<Eigen::VectorXd> u) override {
-    if (count_++ % every_ == 0) {
-      samples_->time.push_back(t);
-      samples_->measured.emplace_back(measured_state);
-      samples_->reference.push_back(reference);
-    }
+    samples_->time.push_back(t);
+    samples_->measured.emplace_back(measured_state);
+    samples_->reference.push_back(reference);
     inner_->control(t, measured_state, reference, u);
   }
 
  private:
   std::unique_ptr<Controller> inner_;
-  int every_;
   RecordedSamples* samples_;
-  long count_ = 0;
 };
 
 // Nearest rank on sorted values.
@@ -70,31 +63,56 @@ int pin(int requested) {
   return cpu;
 }
 
-// One pass of `controller` over the samples from a reset; the time of each call when `times`.
-void pass(Controller& controller, const RecordedSamples& samples, const Eigen::VectorXd& x0, Eigen::VectorXd& u,
-          std::vector<double>* times, const std::string& label) {
+// The timed samples: `segments` runs of consecutive samples spread evenly over the recording, each
+// after kSettleSamples untimed ones. first[i] is where segment i starts stepping.
+struct Plan {
+  std::vector<std::size_t> first;
+  std::size_t per_segment = 0;
+};
+
+Plan plan(std::size_t recorded, const StepTimingOptions& options) {
+  if (options.samples < 1 || options.segments < 1)
+    throw Error("bench: samples and segments must be >= 1");
+  const auto segments = static_cast<std::size_t>(options.segments);
+  Plan p;
+  p.per_segment = (static_cast<std::size_t>(options.samples) + segments - 1) / segments;
+  const std::size_t span = kSettleSamples + p.per_segment;
+  if (span * segments > recorded)
+    throw Error("bench: the flight recorded " + std::to_string(recorded) + " samples, fewer than the " +
+                std::to_string(span * segments) + " that " + std::to_string(segments) + " segments of " +
+                std::to_string(p.per_segment) + " timed samples need: fly longer or time fewer samples");
+  const std::size_t stride = recorded / segments;
+  for (std::size_t i = 0; i < segments; ++i) p.first.push_back(i * stride + (stride - span) / 2);
+  return p;
+}
+
+// One pass of `controller` over the planned samples from a reset; the time of each timed call
+// when `times`.
+void pass(Controller& controller, const RecordedSamples& samples, const Plan& plan, const Eigen::VectorXd& x0,
+          Eigen::VectorXd& u, std::vector<double>* times, const std::string& label) {
   controller.reset(x0, samples.time.front());
-  for (std::size_t k = 0; k < samples.size(); ++k) {
-    try {
-      const auto start = std::chrono::steady_clock::now();
-      controller.control(samples.time[k], samples.measured[k], samples.reference[k], u);
-      const auto stop = std::chrono::steady_clock::now();
-      if (times) times->push_back(static_cast<double>(std::chrono::duration_cast<std::chrono::nanoseconds>(stop - start).count()));
-    } catch (const Error& error) {
-      throw Error("bench: " + label + " failed on the recorded sample at t = " + std::to_string(samples.time[k]) +
-                  " s: " + error.what());
+  for (const std::size_t first : plan.first) {
+    for (std::size_t k = first; k < first + kSettleSamples + plan.per_segment; ++k) {
+      try {
+        const auto start = std::chrono::steady_clock::now();
+        controller.control(samples.time[k], samples.measured[k], samples.reference[k], u);
+        const auto stop = std::chrono::steady_clock::now();
+        if (times && k >= first + kSettleSamples)
+          times->push_back(static_cast<double>(std::chrono::duration_cast<std::chrono::nanoseconds>(stop - start).count()));
+      } catch (const Error& error) {
+        throw Error("bench: " + label + " failed on the recorded sample at t = " + std::to_string(samples.time[k]) +
+                    " s: " + error.what());
+      }
     }
   }
 }
 
 }  // namespace
 
-RecordedSamples record_samples(const Flight& flight, PreparedController& prepared, int every) {
-  if (every < 1) throw Error("bench: --every must be >= 1");
+RecordedSamples record_samples(const Flight& flight, PreparedController& prepared) {
   RecordedSamples samples;
   samples.recorded_with = prepared.spec.label;
-  PreparedController recorder{prepared.spec,
-                              std::make_unique<SampleRecorder>(prepared.controller->clone(), every, samples),
+  PreparedController recorder{prepared.spec, std::make_unique<SampleRecorder>(prepared.controller->clone(), samples),
                               prepared.settings};
   const RunResult run = flight.fly(recorder);
   if (samples.size() == 0)
@@ -107,21 +125,22 @@ StepTimingReport time_steps(std::vector<PreparedController>& controllers, const 
                             const StepTimingOptions& options) {
   if (options.repetitions < 1 || options.warmup_passes < 0)
     throw Error("bench: repetitions must be >= 1 and warm-up passes >= 0");
+  const Plan timed = plan(samples.size(), options);
   StepTimingReport report;
   report.options = options;
-  report.samples = samples.size();
+  report.samples = timed.first.size() * timed.per_segment;
   report.cpu = pin(options.cpu);
   Eigen::VectorXd u(input_dim);
   for (auto& prepared : controllers) {
     report.controllers.push_back({prepared.spec.label, prepared.spec.controller, {}, 0, 0, 0, 0, 0, false});
-    report.controllers.back().nanoseconds.reserve(samples.size() * static_cast<std::size_t>(options.repetitions));
+    report.controllers.back().nanoseconds.reserve(report.samples * static_cast<std::size_t>(options.repetitions));
   }
   for (int warmup = 0; warmup < options.warmup_passes; ++warmup)
-    for (auto& prepared : controllers) pass(*prepared.controller, samples, initial_state, u, nullptr, prepared.spec.label);
+    for (auto& prepared : controllers) pass(*prepared.controller, samples, timed, initial_state, u, nullptr, prepared.spec.label);
   // Interleaved: repetition r of every controller before repetition r + 1 of any.
   for (int repetition = 0; repetition < options.repetitions; ++repetition)
     for (std::size_t c = 0; c < controllers.size(); ++c)
-      pass(*controllers[c].controller, samples, initial_state, u, &report.controllers[c].nanoseconds,
+      pass(*controllers[c].controller, samples, timed, initial_state, u, &report.controllers[c].nanoseconds,
            controllers[c].spec.label);
   for (StepTiming& timing : report.controllers) {
     std::vector<double> sorted = timing.nanoseconds;
@@ -154,9 +173,9 @@ std::string step_timing_table(const StepTimingReport& report) {
     text += line;
   }
   std::snprintf(line, sizeof line,
-                "%zu recorded states x %d repetitions per controller (interleaved, after %d warm-up pass%s), %s; "
-                "budget: the %.3g ms controller period.\n",
-                report.samples, report.options.repetitions, report.options.warmup_passes,
+                "%zu timed steps (%d runs of consecutive 1 kHz samples spread over the flight) x %d repetitions per "
+                "controller (interleaved, after %d warm-up pass%s), %s; budget: the %.3g ms controller period.\n",
+                report.samples, report.options.segments, report.options.repetitions, report.options.warmup_passes,
                 report.options.warmup_passes == 1 ? "" : "es",
                 report.cpu >= 0 ? ("pinned to core " + std::to_string(report.cpu)).c_str() : "not pinned",
                 report.options.budget_seconds * 1e3);
@@ -167,7 +186,8 @@ std::string step_timing_table(const StepTimingReport& report) {
 nlohmann::ordered_json to_json(const StepTimingReport& report) {
   nlohmann::ordered_json j;
   j["format"] = "thetad-bench-1";
-  j["samples"] = report.samples;
+  j["timed_steps_per_pass"] = report.samples;
+  j["segments"] = report.options.segments;
   j["repetitions"] = report.options.repetitions;
   j["warmup_passes"] = report.options.warmup_passes;
   j["cpu"] = report.cpu;

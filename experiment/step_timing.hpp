@@ -16,8 +16,8 @@ namespace thetad {
 // on one pinned core, after a warm-up, repetitions interleaved across the controllers so that a
 // slow phase of a noisy host hits them all alike.
 
-// The samples a controller is timed on: what control() received at every `every`-th sample of a
-// flight (time, measured state, reference).
+// What control() received at every sample of a flight (time, measured state, reference): the
+// states a controller is timed on.
 struct RecordedSamples {
   std::vector<double> time;
   std::vector<Eigen::VectorXd> measured;
@@ -26,11 +26,18 @@ struct RecordedSamples {
   std::size_t size() const { return time.size(); }
 };
 
-// Flies `prepared` through `flight` and keeps every `every`-th sample. Throws thetad::Error when
-// the flight diverged before any sample was kept.
-RecordedSamples record_samples(const Flight& flight, PreparedController& prepared, int every);
+// Flies `prepared` through `flight` and keeps every sample. Throws thetad::Error when the flight
+// diverged before the first sample.
+RecordedSamples record_samples(const Flight& flight, PreparedController& prepared);
 
+// A controller is timed at 1 kHz as it flies, on consecutive samples: its warm starts (the last
+// P, the last input) come from the sample before, as in flight. The timed samples are `segments`
+// runs of consecutive samples spread evenly over the flight, `samples` in all; before each run the
+// controller steps through kSettleSamples samples untimed, so that no timed step starts from a
+// state seconds away.
 struct StepTimingOptions {
+  int samples = 1000;        // timed calls per controller and pass
+  int segments = 10;
   int warmup_passes = 1;     // passes over the samples before timing
   int repetitions = 5;       // timed passes per controller
   int cpu = -1;              // core to pin to; -1: the last core this process may use; -2: no pinning
@@ -49,11 +56,13 @@ struct StepTiming {
 struct StepTimingReport {
   std::vector<StepTiming> controllers;
   int cpu = -1;  // the core the timing ran on (-1: not pinned)
-  std::size_t samples = 0;
+  std::size_t samples = 0;  // timed per pass
   StepTimingOptions options;
 };
 
-// Times each prepared controller on `samples` (each is reset at the recording's first state first).
+inline constexpr std::size_t kSettleSamples = 10;
+
+// Times each prepared controller on `samples` (each pass starts with a reset at `initial_state`).
 // Throws thetad::Error when a controller fails on a recorded state.
 StepTimingReport time_steps(std::vector<PreparedController>& controllers, const RecordedSamples& samples,
                             const Eigen::VectorXd& initial_state, Eigen::Index input_dim,

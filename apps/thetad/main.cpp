@@ -1,9 +1,11 @@
-// The thetad command line. Every thetad::Error becomes one clear line on stderr and exit code 1.
+// The thetad command line. Every thetad::Error becomes one clear line on stderr and exit code 1;
+// a flight that diverged is exit code 3 (run_command.hpp).
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
 
+#include "apps/thetad/bench_command.hpp"
 #include "apps/thetad/compare_command.hpp"
 #include "apps/thetad/demo_command.hpp"
 #include "apps/thetad/plot_command.hpp"
@@ -11,11 +13,19 @@
 #include "apps/thetad/run_command.hpp"
 #include "apps/thetad/tune_command.hpp"
 #include "experiment/build_info.hpp"
+#include "experiment/plugins.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"thetad: theta-D, SDRE and LQR control of the X-Cell miniature helicopter"};
   app.set_version_flag("--version", thetad::version_line());
   app.require_subcommand(1);
+  // Plug-ins first: the controllers they register are known to every command (--plugin may stand
+  // before or after the command's name).
+  std::vector<std::string> plugins;
+  app.add_option("--plugin", plugins,
+                 "Load a controller plug-in (a shared library built with thetad_add_plugin; repeatable; also "
+                 "THETAD_PLUGIN_PATH)");
+  app.fallthrough();
   // Bad arguments are one line too, in the same form as every other error.
   app.failure_message([](const CLI::App*, const CLI::Error& error) {
     return std::string("thetad: error: ") + error.what() + " (see --help)\n";
@@ -35,10 +45,14 @@ int main(int argc, char** argv) {
   auto* plot = thetad::app::add_plot_command(app, plot_arguments);
   thetad::app::TuneArguments tune_arguments;
   auto* tune = thetad::app::add_tune_command(app, tune_arguments);
-  auto* list = app.add_subcommand("list", "List the registered controllers with their descriptions");
+  auto* list = app.add_subcommand("list", "List the registered controllers with their descriptions and origins");
+  thetad::app::BenchArguments bench_arguments;
+  auto* bench = thetad::app::add_bench_command(app, bench_arguments);
 
   CLI11_PARSE(app, argc, argv);
   try {
+    for (const auto& library : thetad::plugins_from_environment()) thetad::load_plugin(library);
+    for (const auto& library : plugins) thetad::load_plugin(library);
     if (*demo) return thetad::app::run_demo(demo_out);
     if (*run) return thetad::app::run_run(run_arguments);
     if (*compare) return thetad::app::run_compare(compare_arguments);
@@ -46,6 +60,7 @@ int main(int argc, char** argv) {
     if (*tune) return thetad::app::run_tune(tune_arguments);
     if (*plot) return thetad::app::run_plot(plot_arguments);
     if (*design_lqr) return thetad::app::run_design_lqr(design_lqr_arguments);
+    if (*bench) return thetad::app::run_bench(bench_arguments);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "thetad: error: %s\n", e.what());
     return 1;

@@ -140,7 +140,8 @@ int run_list() {
   std::size_t width = 0;
   for (const auto& name : registry.names()) width = std::max(width, name.size());
   for (const auto& name : registry.names()) {
-    std::printf("%-*s  %s\n", static_cast<int>(width), name.c_str(), registry.description(name).c_str());
+    std::printf("%-*s  %s [%s]\n", static_cast<int>(width), name.c_str(), registry.description(name).c_str(),
+                registry.origin(name).c_str());
   }
   return 0;
 }

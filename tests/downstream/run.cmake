@@ -51,3 +51,21 @@ foreach(installed share/doc/thetad/model.md share/thetad/scripts/plot_run.py sha
     message(FATAL_ERROR "cmake --install did not install ${installed}")
   endif()
 endforeach()
+
+# A plug-in built out of tree from the installed example project, flown by the installed thetad.
+execute_process(COMMAND ${CMAKE_COMMAND} -S ${WORK_DIR}/prefix/share/thetad/examples/pid-plugin
+    -B ${WORK_DIR}/plugin -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix -DCMAKE_BUILD_TYPE=${BUILD_TYPE}
+  RESULT_VARIABLE rc OUTPUT_QUIET)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "configuring the installed example plug-in failed (${rc})")
+endif()
+execute_process(COMMAND ${CMAKE_COMMAND} --build ${WORK_DIR}/plugin RESULT_VARIABLE rc OUTPUT_QUIET)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "building the installed example plug-in failed (${rc})")
+endif()
+execute_process(COMMAND ${WORK_DIR}/prefix/bin/thetad --plugin ${WORK_DIR}/plugin/example_pid_plugin.so run
+    --scenario scenario-1 --controller example-pid-plugin --duration 5 --summary-only --quiet --out ${WORK_DIR}/run
+  RESULT_VARIABLE rc OUTPUT_VARIABLE output ERROR_VARIABLE errors)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "the installed thetad did not fly the out-of-tree plug-in (${rc}):\n${output}${errors}")
+endif()

@@ -1,0 +1,77 @@
+#include "apps/thetad/bench_command.hpp"
+
+#include <cstdio>
+
+#include "core/atomic_file.hpp"
+#include "core/error.hpp"
+#include "experiment/controller_spec.hpp"
+#include "experiment/provenance.hpp"
+#include "experiment/run_files.hpp"
+
+namespace thetad::app {
+
+CLI::App* add_bench_command(CLI::App& app, BenchArguments& arguments) {
+  auto* bench = app.add_subcommand(
+      "bench", "Per-step cost of controllers on states recorded along a scenario flight, outside the simulation "
+               "loop, pinned to one core: median, p10, p90, p99, max, share of the 1 kHz budget");
+  arguments.flight.scenario = "scenario-1";
+  add_flight_options(*bench, arguments.flight, false);
+  bench->get_option("--out")->description("JSON file for the figures (optional)");
+  bench->add_option("--controllers", arguments.controllers,
+                    "Comma-separated NAME, LABEL=NAME or LABEL=NAME:SETTINGS.yaml; the first flies the recording")
+      ->required()
+      ->delimiter(',');
+  bench->add_option("--samples", arguments.timing.samples,
+                    "Timed steps per pass: consecutive 1 kHz samples in --segments runs spread over the flight")
+      ->check(CLI::Range(1, 1000000))
+      ->capture_default_str();
+  bench->add_option("--segments", arguments.timing.segments, "Runs of consecutive samples")
+      ->check(CLI::Range(1, 10000))
+      ->capture_default_str();
+  bench->add_option("--repetitions", arguments.timing.repetitions, "Timed passes over the states per controller")
+      ->check(CLI::Range(1, 10000))
+      ->capture_default_str();
+  bench->add_option("--warmup", arguments.timing.warmup_passes, "Untimed passes first")
+      ->check(CLI::Range(0, 1000))
+      ->capture_default_str();
+  bench->add_option("--cpu", arguments.timing.cpu, "Core to pin to (-1: the last this process may use; -2: none)")
+      ->capture_default_str();
+  return bench;
+}
+
+int run_bench(const BenchArguments& arguments) {
+  const FlightOptions& options = arguments.flight;
+  RunControls controls = run_controls(options);
+  controls.summary_only = true;
+  const Flight flight(options.scenario, controls);
+  const YAML::Node settings = options.settings.empty() ? YAML::Node() : load_settings_file(options.settings);
+  std::vector<ControllerSpec> specs;
+  for (const auto& text : arguments.controllers) specs.push_back(parse_controller_spec(text, settings, options.settings.string()));
+  check_labels(specs);
+  std::vector<PreparedController> controllers;
+  for (const auto& spec : specs) controllers.push_back(flight.prepare(spec));
+  if (!options.out.empty() && options.out.has_parent_path()) prepare_output_folder(options.out.parent_path());
+
+  Progress progress(Progress::mode_for_stderr(options.quiet));
+  progress.start("recording with " + specs.front().label + ":", flight.settings().duration);
+  const RecordedSamples samples = record_samples(flight, controllers.front());
+  progress.finish(std::to_string(samples.size()) + " samples recorded");
+
+  const StepTimingReport report =
+      time_steps(controllers, samples, flight.scenario().initial_state, flight.model().input_dim(), arguments.timing);
+  std::printf("%s: states recorded along %g s flown by %s\n", flight.scenario().name.c_str(),
+              flight.settings().duration, samples.recorded_with.c_str());
+  std::fputs(step_timing_table(report).c_str(), stdout);
+  if (!options.out.empty()) {
+    nlohmann::ordered_json j = to_json(report);
+    Provenance provenance = flight.provenance();
+    stamp_host_and_time(provenance);
+    j["recorded_with"] = samples.recorded_with;
+    j["provenance"] = to_json(provenance);
+    write_file_atomically(options.out, j.dump(2) + "\n");
+    std::printf("Wrote %s.\n", options.out.c_str());
+  }
+  return 0;
+}
+
+}  // namespace thetad::app

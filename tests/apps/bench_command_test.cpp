@@ -1,0 +1,62 @@
+// thetad bench as a user runs it: the per-step table and JSON for labelled controllers (plug-ins
+// included), and clear errors for what cannot be timed.
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "tests/apps/run_thetad.hpp"
+#include "tests/scratch_directory.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+using thetad::testing::Output;
+
+class BenchCommand : public ::testing::Test {
+ protected:
+  Output thetad(const std::string& arguments) const { return thetad::testing::run_thetad(dir_, arguments); }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+
+  thetad::testing::ScratchDirectory scratch_{"thetad_bench_command_test"};
+  const fs::path dir_ = scratch_.path();
+};
+
+TEST_F(BenchCommand, TimesEachLabelledControllerOnRecordedStates) {
+  const Output output = thetad("bench --scenario scenario-1 --duration 2 --controllers paper=theta-d,lqr,pid=example-pid"
+                               " --samples 200 --segments 4 --repetitions 2 --out " + path("bench.json"));
+  ASSERT_EQ(output.status, 0) << output.err;
+  EXPECT_THAT(output.out, HasSubstr("states recorded along 2 s flown by paper"));
+  EXPECT_THAT(output.out, HasSubstr("median us"));
+  EXPECT_THAT(output.out, HasSubstr("\npaper "));
+  EXPECT_THAT(output.out, HasSubstr("\npid "));
+  EXPECT_THAT(output.out, HasSubstr("real-time capable"));
+  const auto j = nlohmann::json::parse(thetad::testing::read_text(dir_ / "bench.json"));
+  EXPECT_EQ(j["timed_steps_per_pass"], 200);
+  EXPECT_EQ(j["repetitions"], 2);
+  ASSERT_EQ(j["controllers"].size(), 3u);
+  for (const auto& c : j["controllers"]) {
+    EXPECT_EQ(c["calls"], 400);
+    EXPECT_LE(c["p10_ns"].get<double>(), c["median_ns"].get<double>());
+    EXPECT_LE(c["median_ns"].get<double>(), c["p90_ns"].get<double>());
+    EXPECT_LE(c["p90_ns"].get<double>(), c["p99_ns"].get<double>());
+    EXPECT_LE(c["p99_ns"].get<double>(), c["max_ns"].get<double>());
+    EXPECT_GT(c["median_ns"].get<double>(), 0.0);
+  }
+  EXPECT_EQ(j["controllers"][0]["label"], "paper");
+  EXPECT_EQ(j["controllers"][0]["controller"], "theta-d");
+  EXPECT_EQ(j["provenance"]["scenario"]["name"], "scenario-1");
+}
+
+TEST_F(BenchCommand, TooShortAFlightForTheSamplesIsAClearError) {
+  const Output output = thetad("bench --duration 0.1 --controllers lqr --samples 1000");
+  EXPECT_EQ(output.status, 1);
+  EXPECT_THAT(output.err, HasSubstr("the flight recorded 100 samples, fewer than the 1100"));
+}
+
+}  // namespace

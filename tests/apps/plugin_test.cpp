@@ -1,0 +1,85 @@
+// Controllers from plug-ins, loaded by the built thetad as a user loads them: --plugin (before or
+// after the command), THETAD_PLUGIN_PATH, the origin shown by `thetad list`, and clear errors.
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "tests/apps/run_thetad.hpp"
+#include "tests/scratch_directory.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+using thetad::testing::Output;
+
+class Plugins : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::ofstream(dir_ / "hover.yaml") << "name: hover\nduration: 3\ninitial_state:\n  position: [0, 0, 2]\n"
+                                          "phases:\n  - name: hold\n    type: hold\n    time: [0, 3]\n";
+  }
+  Output thetad(const std::string& arguments, const std::string& environment = "") const {
+    return thetad::testing::run_thetad(dir_, arguments, environment);
+  }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+
+  thetad::testing::ScratchDirectory scratch_{"thetad_plugin_test"};
+  const fs::path dir_ = scratch_.path();
+};
+
+TEST_F(Plugins, ListShowsWhereEachControllerComesFrom) {
+  const Output output = thetad(std::string("--plugin ") + THETAD_EXAMPLE_PLUGIN + " list");
+  ASSERT_EQ(output.status, 0) << output.err;
+  EXPECT_THAT(output.out, HasSubstr("[plug-in " + fs::canonical(THETAD_EXAMPLE_PLUGIN).string() + "]"));
+  EXPECT_THAT(output.out, HasSubstr("\nexample-pid-plugin "));
+  EXPECT_THAT(output.out, HasSubstr("[built-in]"));
+}
+
+TEST_F(Plugins, APluginControllerFliesLikeABuiltInOne) {
+  const Output output = thetad("compare --scenario " + path("hover.yaml") + " --controllers built-in=example-pid," +
+                               "plugged=example-pid-plugin --ideal --out " + path("out") + " --plugin " +
+                               THETAD_EXAMPLE_PLUGIN);
+  ASSERT_EQ(output.status, 0) << output.err;
+  const auto read = [&](const std::string& label) {
+    return nlohmann::json::parse(thetad::testing::read_text(dir_ / "out" / (label + ".json")));
+  };
+  // The same source compiled twice: the same flight, to the last bit.
+  EXPECT_EQ(read("plugged")["cost"]["J"], read("built-in")["cost"]["J"]);
+  EXPECT_EQ(read("plugged")["controller"], "example-pid-plugin");
+  EXPECT_LT(read("plugged")["tracking_error_m"]["max"][2].get<double>(), 0.05);
+}
+
+TEST_F(Plugins, ThePluginPathLoadsFilesAndFolders) {
+  const std::string folder = fs::path(THETAD_EXAMPLE_PLUGIN).parent_path().string();
+  for (const std::string& entry : {std::string(THETAD_EXAMPLE_PLUGIN), folder}) {
+    const Output output = thetad("list", "THETAD_PLUGIN_PATH=" + entry);
+    ASSERT_EQ(output.status, 0) << output.err;
+    EXPECT_THAT(output.out, HasSubstr("example-pid-plugin"));
+  }
+  const Output missing = thetad("list", "THETAD_PLUGIN_PATH=" + path("nowhere"));
+  EXPECT_EQ(missing.status, 1);
+  EXPECT_THAT(missing.err, HasSubstr("THETAD_PLUGIN_PATH: " + path("nowhere") + " does not exist"));
+}
+
+TEST_F(Plugins, BadPluginsAreOneClearLine) {
+  Output output = thetad(std::string("--plugin ") + THETAD_DUPLICATE_PLUGIN + " list");
+  EXPECT_EQ(output.status, 1);
+  EXPECT_THAT(output.err, HasSubstr("the name 'lqr' is registered twice (built-in and plug-in "));
+
+  output = thetad("--plugin " + path("missing.so") + " list");
+  EXPECT_EQ(output.status, 1);
+  EXPECT_THAT(output.err, HasSubstr("plug-in " + path("missing.so")));
+
+  std::ofstream(dir_ / "not-a-library.so") << "text";
+  output = thetad("--plugin " + path("not-a-library.so") + " list");
+  EXPECT_EQ(output.status, 1);
+  EXPECT_THAT(output.err, HasSubstr("cannot load plug-in"));
+}
+
+}  // namespace
