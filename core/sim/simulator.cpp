@@ -12,6 +12,7 @@
 #include "core/error.hpp"
 #include "core/helicopter/state.hpp"
 #include "core/helicopter/uncertainty.hpp"
+#include "core/sim/run_metrics.hpp"
 
 namespace thetad::sim {
 
@@ -123,21 +124,72 @@ void validate(const SimulationSettings& settings, const Eigen::VectorXd& x0) {
                 std::to_string(kStateDim));
 }
 
-struct ComputeTimeStatistics {
-  double mean = 0.0, median = 0.0, p99 = 0.0;
-};
+// Reserves the log for the whole run, so that the step loop allocates nothing; bounded up front, so
+// that a flight too long to log fails now with advice instead of with bad_alloc later.
+void reserve_log(const SimulationSettings& settings, std::int64_t samples, RunLog& log) {
+  const std::int64_t rows = settings.keep_log ? (samples + settings.log_every - 1) / settings.log_every : 0;
+  const auto columns = static_cast<std::int64_t>(log_schema().size());
+  const double bytes = 8.0 * static_cast<double>(rows * columns + (settings.measure_compute_time ? samples : 0));
+  if (bytes > SimulationSettings::kMaxRunMemory) {
+    char advice[320];
+    std::snprintf(advice, sizeof advice,
+                  "simulate: this flight's log would need %.1f GiB (%lld logged samples), more than the %.0f GiB a run "
+                  "may hold: log every N-th sample (log_every, --log-every) or only the summary (--summary-only)",
+                  bytes / (1 << 30), static_cast<long long>(rows), SimulationSettings::kMaxRunMemory / (1 << 30));
+    throw Error(advice);
+  }
+  log.values.reserve(static_cast<std::size_t>(rows * columns));
+}
 
-ComputeTimeStatistics statistics(std::vector<std::int64_t> samples) {
-  if (samples.empty()) return {};
-  std::sort(samples.begin(), samples.end());
-  const std::size_t n = samples.size();
-  double sum = 0.0;
-  for (const auto s : samples) sum += static_cast<double>(s);
-  const double median = n % 2 == 1 ? static_cast<double>(samples[n / 2])
-                                   : 0.5 * static_cast<double>(samples[n / 2 - 1] + samples[n / 2]);
-  // Nearest rank: the smallest sample with at least 99 % of the samples at or below it.
-  const auto rank = static_cast<std::size_t>(std::ceil(0.99 * static_cast<double>(n)));
-  return {sum / static_cast<double>(n), median, static_cast<double>(samples[std::max<std::size_t>(rank, 1) - 1])};
+// control() of `law`; its wall time (ns) when `timing`, else 0.
+std::int64_t call_control(ControlLaw& law, double t, const Eigen::VectorXd& measured, const Reference& reference,
+                          Eigen::VectorXd& command, bool timing) {
+  if (!timing) {
+    law.control(t, measured, reference, command);
+    return 0;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  law.control(t, measured, reference, command);
+  const auto stop = std::chrono::steady_clock::now();
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(stop - start).count();
+}
+
+// The controller period's RK4 steps from t with `applied` held (zero-order hold). On divergence,
+// t becomes the end of the step that diverged and the reason is returned.
+std::optional<std::string> hold_for_one_period(const heli::Helicopter& plant, const Eigen::VectorXd& applied,
+                                               const SimulationSettings& settings, Rk4Workspace& workspace,
+                                               Eigen::VectorXd& x, double& t) {
+  for (int step = 1; step <= settings.controller_period_steps; ++step) {
+    const double t_end = t + step * settings.dt;
+    std::optional<std::string> failure;
+    try {
+      rk4_step(plant, applied, settings.dt, workspace, x);
+      failure = divergence(x, settings.limits, t_end);
+    } catch (const Error& error) {
+      failure = failure_reason("plant", error, t_end);
+    }
+    if (failure) {
+      t = t_end;
+      return failure;
+    }
+  }
+  return std::nullopt;
+}
+
+// One log row, in the order of log_schema().
+void append_row(double t, const Eigen::Vector3d& command_position, const Eigen::VectorXd& x,
+                const Eigen::VectorXd& measured, const Eigen::VectorXd& command, const Eigen::VectorXd& applied,
+                double rotor_speed, const Eigen::Vector3d& wind, std::int64_t compute_ns, RunLog& log) {
+  auto& row = log.values;
+  row.push_back(t);
+  row.insert(row.end(), command_position.begin(), command_position.end());
+  row.insert(row.end(), x.begin(), x.end());
+  row.insert(row.end(), measured.begin(), measured.end());
+  row.insert(row.end(), command.begin(), command.end());
+  row.insert(row.end(), applied.begin(), applied.end());
+  row.push_back(rotor_speed);
+  row.insert(row.end(), wind.begin(), wind.end());
+  row.push_back(static_cast<double>(compute_ns));
 }
 
 }  // namespace
@@ -173,8 +225,7 @@ RunResult simulate(ControlLaw& law, const ReferenceTrajectory& reference, const 
   WindGust gust(settings.wind_gust, period);
   // J of Eq. (14) with the weights the controllers are designed with (the paper's, Eqs. 33-34).
   const DesignDefaults design = plant.design_defaults();
-  const Eigen::VectorXd& state_weights = design.state_weights;
-  const Eigen::VectorXd& input_weights = design.input_weights;
+  RunMetrics metrics(design.state_weights, design.input_weights, period, samples, settings.measure_compute_time);
 
   RunResult result;
   RunSummary& summary = result.summary;
@@ -186,30 +237,13 @@ RunResult simulate(ControlLaw& law, const ReferenceTrajectory& reference, const 
       if (entry.category == UncertaintyCategory::parameter) summary.parameter_factors.emplace_back(entry.name, entry.factor);
     }
   }
-  // Sized before the first step, so that the step loop allocates nothing; bounded up front, so
-  // that a flight too long to log fails now with advice instead of with bad_alloc later.
-  const std::int64_t logged_rows = settings.keep_log ? (samples + settings.log_every - 1) / settings.log_every : 0;
-  const auto columns = static_cast<std::int64_t>(log_schema().size());
-  const double bytes = 8.0 * static_cast<double>(logged_rows * columns + (settings.measure_compute_time ? samples : 0));
-  if (bytes > SimulationSettings::kMaxRunMemory) {
-    char advice[320];
-    std::snprintf(advice, sizeof advice,
-                  "simulate: this flight's log would need %.1f GiB (%lld logged samples), more than the %.0f GiB a run "
-                  "may hold: log every N-th sample (log_every, --log-every) or only the summary (--summary-only)",
-                  bytes / (1 << 30), static_cast<long long>(logged_rows), SimulationSettings::kMaxRunMemory / (1 << 30));
-    throw Error(advice);
-  }
-  result.log.values.reserve(static_cast<std::size_t>(logged_rows * columns));
-  std::vector<std::int64_t> compute_ns;
-  if (settings.measure_compute_time) compute_ns.reserve(static_cast<std::size_t>(samples));
+  reserve_log(settings, samples, result.log);
 
   Eigen::VectorXd x = x0;
   Eigen::VectorXd measured(kStateDim), command(kInputDim), applied(kInputDim), v_track(kStateDim);
   Rk4Workspace workspace(kStateDim);
   SampleDraws draws;
   PositionIntegral reference_integral, measured_integral, true_error_integral;
-  Eigen::Vector3d error_square_sum = Eigen::Vector3d::Zero();
-  Eigen::Matrix<double, kInputDim, 1> command_square_sum = Eigen::Matrix<double, kInputDim, 1>::Zero();
 
   law.reset(x0, 0.0);
   std::optional<std::string> failure = divergence(x, settings.limits, 0.0);
@@ -225,14 +259,8 @@ RunResult simulate(ControlLaw& law, const ReferenceTrajectory& reference, const 
 
     std::int64_t elapsed_ns = 0;
     try {
-      if (settings.measure_compute_time) {
-        const auto start = std::chrono::steady_clock::now();
-        law.control(t, measured, Reference{position_command, reference_integral.value}, command);
-        const auto stop = std::chrono::steady_clock::now();
-        elapsed_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(stop - start).count();
-      } else {
-        law.control(t, measured, Reference{position_command, reference_integral.value}, command);
-      }
+      elapsed_ns = call_control(law, t, measured, Reference{position_command, reference_integral.value}, command,
+                                settings.measure_compute_time);
     } catch (const Error& error) {
       failure = failure_reason("controller", error, t);
       break;
@@ -257,40 +285,16 @@ RunResult simulate(ControlLaw& law, const ReferenceTrajectory& reference, const 
     v_track.segment<11>(kU) = x.segment<11>(kU);
     v_track.segment<3>(kXi) = true_error_integral.value;
     v_track(kS) = 1.0;
-    summary.cost += 0.5 * (v_track.cwiseAbs2().dot(state_weights) + command.cwiseAbs2().dot(input_weights)) * period;
-    error_square_sum += error.cwiseAbs2();
-    summary.max_tracking_error = summary.max_tracking_error.cwiseMax(error.cwiseAbs());
-    command_square_sum += command.cwiseAbs2();
-    if (settings.measure_compute_time) compute_ns.push_back(elapsed_ns);
-    ++summary.controller_samples;
-
-    if (settings.keep_log && k % settings.log_every == 0) {
-      auto& row = result.log.values;
-      row.push_back(t);
-      row.insert(row.end(), position_command.begin(), position_command.end());
-      row.insert(row.end(), x.begin(), x.end());
-      row.insert(row.end(), measured.begin(), measured.end());
-      row.insert(row.end(), command.begin(), command.end());
-      row.insert(row.end(), applied.begin(), applied.end());
-      row.push_back(rotor_speed);
-      row.insert(row.end(), plant.environment().wind_ned.begin(), plant.environment().wind_ned.end());
-      row.push_back(static_cast<double>(elapsed_ns));
-    }
+    metrics.add(error, v_track, command, elapsed_ns);
+    if (settings.keep_log && k % settings.log_every == 0)
+      append_row(t, position_command, x, measured, command, applied, rotor_speed, plant.environment().wind_ned,
+                 elapsed_ns, result.log);
 
     reference_integral.accumulate(position_command, period);
     measured_integral.accumulate(measured.segment<3>(kXp), period);
     true_error_integral.accumulate(error, period);
 
-    for (int step = 1; step <= settings.controller_period_steps && !failure; ++step) {
-      const double t_end = t + step * settings.dt;
-      try {
-        rk4_step(plant, applied, settings.dt, workspace, x);
-        failure = divergence(x, settings.limits, t_end);
-      } catch (const Error& error) {
-        failure = failure_reason("plant", error, t_end);
-      }
-      if (failure) t = t_end;
-    }
+    failure = hold_for_one_period(plant, applied, settings, workspace, x, t);
   }
 
   if (failure) {
@@ -300,16 +304,8 @@ RunResult simulate(ControlLaw& law, const ReferenceTrajectory& reference, const 
   } else {
     summary.end_time = static_cast<double>(samples) * period;
   }
-  if (summary.controller_samples > 0) {
-    const auto n = static_cast<double>(summary.controller_samples);
-    summary.rms_tracking_error = (error_square_sum / n).cwiseSqrt();
-    summary.command_rms = (command_square_sum / n).cwiseSqrt();
-  }
+  metrics.finish(summary);
   summary.controller_counters = law.counters();
-  const ComputeTimeStatistics timing = statistics(std::move(compute_ns));
-  summary.compute_ns_mean = timing.mean;
-  summary.compute_ns_median = timing.median;
-  summary.compute_ns_p99 = timing.p99;
   return result;
 }
 

@@ -1,0 +1,42 @@
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "core/sim/simulator.hpp"
+
+namespace thetad::sim {
+
+// The figures of a RunSummary, accumulated sample by sample while a run flies: RMS and max
+// position error, RMS command, the cost J and the control step's wall-time statistics. Sized at
+// construction: add() allocates nothing.
+class RunMetrics {
+ public:
+  // `state_weights`, `input_weights`: the diagonals of Q and R in J; `period`: the controller
+  // period T_c; `samples`: the run's controller samples (for the timing record, when `timing`).
+  RunMetrics(Eigen::VectorXd state_weights, Eigen::VectorXd input_weights, double period, std::int64_t samples,
+             bool timing);
+
+  // One controller sample: the true position error, V_track on the true state, the commanded u
+  // and the control() wall time.
+  void add(const Eigen::Vector3d& error, const Eigen::VectorXd& v_track, const Eigen::VectorXd& command,
+           std::int64_t compute_ns);
+
+  // Writes the figures into `summary` (controller_samples, errors, effort, cost, timing).
+  void finish(RunSummary& summary);
+
+ private:
+  Eigen::VectorXd state_weights_, input_weights_;
+  double period_;
+  bool timing_;
+  std::int64_t samples_ = 0;
+  double cost_ = 0.0;
+  Eigen::Vector3d error_square_sum_ = Eigen::Vector3d::Zero();
+  Eigen::Vector3d max_error_ = Eigen::Vector3d::Zero();
+  Eigen::VectorXd command_square_sum_;
+  std::vector<std::int64_t> compute_ns_;
+};
+
+}  // namespace thetad::sim
