@@ -29,7 +29,7 @@
 #include "controllers/lqr.hpp"
 #include "controllers/sdre.hpp"
 #include "controllers/theta_d.hpp"
-#include "core/test_plants.hpp"
+#include "tests/test_plants.hpp"
 
 namespace {
 

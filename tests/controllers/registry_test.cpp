@@ -8,8 +8,8 @@
 #include "controllers/lqr_scheduled.hpp"
 #include "controllers/registry.hpp"
 #include "core/settings.hpp"
-#include "core/test_plants.hpp"
 #include "tests/controllers/hover_recovery.hpp"
+#include "tests/test_plants.hpp"
 
 namespace thetad {
 namespace {
