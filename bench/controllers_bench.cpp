@@ -1,14 +1,16 @@
 // One control step of every registered controller on the same states: those the simulator handed
 // the θ–D controller in a closed-loop run of scenario I (all disturbances, its seed), cycled in
 // their order, so that a warm-started SDRE sees realistic step-to-step changes and no controller
-// is timed on one cached state. θ–D runs with N = 1 … 4 terms and 1 (one-step lag) or 3 (exact Ω,
+// is timed on one cached state. Every controller in the registry runs by its name with its
+// defaults, as `thetad run` flies it (a controller registered later is timed without an edit
+// here). Besides, built directly: θ–D with N = 1 … 4 terms and 1 (one-step lag) or 3 (exact Ω,
 // spec §7.6) fixed-point passes; SDRE cold (solve_care: the matrix sign function, Schur as
-// fallback) and warm (Newton–Kleinman from the last P) with the same passes; the LQRs and the
-// example PID; and, as a reference for the Riccati solver, the SDRE step with SLICOT's SB02MD in
-// place of solve_care.
+// fallback) and warm (Newton–Kleinman from the last P) with the same passes; and, as a reference
+// for the Riccati solver, the SDRE step with SLICOT's SB02MD in place of solve_care.
 //
-// The fixed-point tolerance is 0 in every row, so that "3 passes" always means 3: the cost of the
-// variant, not of how fast one trajectory happens to converge.
+// The fixed-point tolerance is 0 in those θ–D and SDRE rows, so that "3 passes" always means 3:
+// the cost of the variant, not of how fast one trajectory happens to converge. The registry's
+// rows stop at their default tolerance (1e-6): their `passes` counter says how many ran.
 
 #include <benchmark/benchmark.h>
 
@@ -23,6 +25,7 @@
 #include <Eigen/Core>
 #include <yaml-cpp/yaml.h>
 
+#include "bench/benchmark_main.hpp"
 #include "bench/slicot.hpp"
 #include "controllers/registry.hpp"
 #include "controllers/sdre.hpp"
@@ -203,17 +206,10 @@ void register_benchmarks() {
         ->Unit(benchmark::kMicrosecond);
   }
   benchmark::RegisterBenchmark("sdre-sb02md/passes:1", sdre_step_sb02md)->Unit(benchmark::kMicrosecond);
-  for (const char* name : {"lqr", "lqr-scheduled", "example-pid"})
-    benchmark::RegisterBenchmark(name, registered_step, std::string(name))->Unit(benchmark::kMicrosecond);
+  for (const std::string& name : thetad::ControllerRegistry::instance().names())
+    benchmark::RegisterBenchmark(name.c_str(), registered_step, name)->Unit(benchmark::kMicrosecond);
 }
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  register_benchmarks();
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
-}
+int main(int argc, char** argv) { return thetad::bench::run_benchmarks(argc, argv, register_benchmarks); }

@@ -174,28 +174,33 @@ def fit_exponent(ns, times):
 
 
 def scaling_series(rows):
-    """{controller: [(n, median, p10, p90)]} from run names control_step/KIND/n:N."""
+    """{controller: [(n, median, p10, p90)]} from run names control_step/CONTROLLER/n:N."""
     series = {}
     for name, row in rows.items():
-        m = re.match(r"control_step/(\w+)/n:(\d+)", name)
+        m = re.match(r"control_step/([\w-]+)/n:(\d+)", name)
         if m and not row["error"]:
             series.setdefault(m.group(1), []).append((int(m.group(2)), row["median"], row["p10"], row["p90"]))
     return series
 
 
-LABELS = {"theta_d": "θ–D (3 terms)", "sdre_cold": "SDRE cold", "sdre_warm": "SDRE warm", "lqr": "LQR"}
+# Columns in this order, then any other controller the benchmark found in the registry, by its name.
+LABELS = {"theta-d": "θ–D (3 terms)", "sdre-cold": "SDRE cold", "sdre-warm": "SDRE warm", "lqr": "LQR"}
+
+
+def kinds_of(series):
+    return [k for k in LABELS if k in series] + [k for k in series if k not in LABELS]
 
 
 def scaling_section(series):
     ns = sorted({n for points in series.values() for n, *_ in points})
-    kinds = [k for k in LABELS if k in series]
+    kinds = kinds_of(series)
     lines = [
         "### Growth with the state dimension (synthetic plants, m = n/3)",
         "",
         "Median CPU time per step (µs); `exponent`: the fitted p of time ∝ nᵖ (least squares on log–log, "
         "all n); last row: the slope between the two largest n alone.",
         "",
-        "| n | " + " | ".join(LABELS[k] for k in kinds) + " |",
+        "| n | " + " | ".join(LABELS.get(k, k) for k in kinds) + " |",
         "|---" * (len(kinds) + 1) + "|",
     ]
     for n in ns:
@@ -241,9 +246,8 @@ def figures(controller_rows, series, exponents, figure_dir):
         plt.close(fig)
     if series:
         fig, ax = plt.subplots(figsize=(6.5, 4.5))
-        for kind, label in LABELS.items():
-            if kind not in series:
-                continue
+        for kind in kinds_of(series):
+            label = LABELS.get(kind, kind)
             points = sorted(series[kind])
             ax.errorbar([p[0] for p in points], [p[1] for p in points],
                         yerr=[[p[1] - p[2] for p in points], [p[3] - p[1] for p in points]],

@@ -1,8 +1,14 @@
-// How the per-step cost of θ–D, SDRE (cold, warm) and LQR grows with the state dimension, on
-// synthetic SDC plants of n = 6, 12, 18, 36, 72 states and m = n/3 inputs (thetad::RandomSdcPlant:
-// F(x) = A + x1 C + x2² D, B(x) = G + x1 E with dense random C, D, E, so every row is nonlinear and
-// every coefficient of F and B varies; (F, B) is stabilizable with probability one at every state).
+// How the per-step cost of the controllers grows with the state dimension, on synthetic SDC plants
+// of n = 6, 12, 18, 36, 72 states and m = n/3 inputs (thetad::RandomSdcPlant: F(x) = A + x1 C +
+// x2² D, B(x) = G + x1 E with dense random C, D, E, so every row is nonlinear and every coefficient
+// of F and B varies; (F, B) is stabilizable with probability one at every state).
 // bench/report.py fits the log-log slope of the medians against n.
+//
+// The rows: every registered controller that flies a plant other than the helicopter, built by
+// name with its defaults (the plant's design defaults: Q = I, R = I, u0 = 0) and named by its
+// Controller::name() (theta-d with 3 terms; sdre-warm), plus the variants below; those that need
+// the helicopter refuse the synthetic plant and are left out (said on stderr). And, built
+// directly, the floor of any controller: one fixed gain (LqrController at the origin, "lqr").
 //
 // The states: a smooth periodic path x_k(j) = 0.2 sin(2π f_j k / K + φ_j), f_j ∈ {1, 2, 3},
 // K = 1000, so that the SDRE's warm start sees small step-to-step changes and the cycle closes
@@ -17,23 +23,32 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
+#include <functional>
 #include <map>
 #include <memory>
 #include <numbers>
 #include <random>
+#include <string>
 #include <utility>
 #include <vector>
 
 #include <Eigen/Core>
+#include <yaml-cpp/yaml.h>
 
+#include "bench/benchmark_main.hpp"
 #include "controllers/lqr.hpp"
-#include "controllers/sdre.hpp"
-#include "controllers/theta_d.hpp"
-#include "core/test_plants.hpp"
+#include "controllers/registry.hpp"
+#include "core/error.hpp"
+#include "tests/test_plants.hpp"
 
 namespace {
 
 constexpr int kStates = 1000;
+
+// Settings timed besides a registered controller's defaults: the SDRE's cold mode (solve_care at
+// every pass) beside its warm default (Newton–Kleinman from the last P).
+const std::multimap<std::string, std::string> kVariants = {{"sdre", "mode: cold"}};
 
 struct Path {
   std::vector<Eigen::VectorXd> states;
@@ -54,7 +69,22 @@ Path smooth_path(int n) {
   return path;
 }
 
-enum class Kind { theta_d, sdre_cold, sdre_warm, lqr };
+// Builds one row's controller for a plant.
+using Make = std::function<std::unique_ptr<thetad::Controller>(const thetad::SdcPlant& plant)>;
+
+Make registered(const std::string& name, const std::string& settings) {
+  return [name, settings](const thetad::SdcPlant& plant) {
+    const thetad::ControllerContext at_rest{plant, Eigen::VectorXd::Zero(plant.state_dim())};
+    return thetad::ControllerRegistry::instance().make(name, YAML::Load(settings), at_rest);
+  };
+}
+
+std::unique_ptr<thetad::Controller> fixed_gain(const thetad::SdcPlant& plant) {
+  const Eigen::Index n = plant.state_dim(), m = plant.input_dim();
+  const thetad::OperatingPoint origin{Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(m), Eigen::VectorXd::Zero(n)};
+  return std::make_unique<thetad::LqrController>(
+      plant, origin, thetad::LqrSettings{Eigen::MatrixXd::Identity(n, n), Eigen::MatrixXd::Identity(m, m), 0});
+}
 
 // A plant, its path and one controller, reset once: θ–D's reset builds the O(n⁶) Lyapunov
 // operator, and Google Benchmark calls a benchmark function several times (iteration estimate,
@@ -67,33 +97,8 @@ struct Fixture {
   std::size_t k = 0;
   double t = 0.0;
 
-  Fixture(Kind kind, int n, int m) : plant(n, m, 1000 + static_cast<std::uint64_t>(n)), path(smooth_path(n)), u(m) {
-    const Eigen::MatrixXd Q = Eigen::MatrixXd::Identity(n, n), R = Eigen::MatrixXd::Identity(m, m);
-    switch (kind) {
-      case Kind::theta_d: {
-        thetad::ThetaDSettings s;
-        s.terms = 3;  // the paper's T0 + T1 + T2; this plant's SDC does not depend on u: one pass
-        s.Q = Q;
-        s.R = R;
-        controller = std::make_unique<thetad::ThetaDController>(plant, s);
-        break;
-      }
-      case Kind::sdre_cold:
-      case Kind::sdre_warm: {
-        thetad::SdreSettings s;
-        s.mode = kind == Kind::sdre_cold ? thetad::SdreSettings::Mode::cold : thetad::SdreSettings::Mode::warm;
-        s.Q = Q;
-        s.R = R;
-        controller = std::make_unique<thetad::SdreController>(plant, s);
-        break;
-      }
-      case Kind::lqr: {
-        const thetad::OperatingPoint origin{Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(m),
-                                            Eigen::VectorXd::Zero(n)};
-        controller = std::make_unique<thetad::LqrController>(plant, origin, thetad::LqrSettings{Q, R, 0});
-        break;
-      }
-    }
+  Fixture(const Make& make, int n, int m)
+      : plant(n, m, 1000 + static_cast<std::uint64_t>(n)), path(smooth_path(n)), controller(make(plant)), u(m) {
     controller->reset(Eigen::VectorXd::Zero(n), 0.0);
     step();  // untimed: the SDRE's first solve is cold
   }
@@ -105,11 +110,11 @@ struct Fixture {
   }
 };
 
-void control_step(benchmark::State& state, Kind kind) {
+void control_step(benchmark::State& state, const std::string& row, const Make& make) {
   const int n = static_cast<int>(state.range(0)), m = std::max(1, n / 3);
-  static std::map<std::pair<Kind, int>, std::unique_ptr<Fixture>> fixtures;
-  auto& fixture = fixtures[{kind, n}];
-  if (!fixture) fixture = std::make_unique<Fixture>(kind, n, m);
+  static std::map<std::pair<std::string, int>, std::unique_ptr<Fixture>> fixtures;
+  auto& fixture = fixtures[{row, n}];
+  if (!fixture) fixture = std::make_unique<Fixture>(make, n, m);
   for (auto _ : state) {
     fixture->step();
     benchmark::DoNotOptimize(fixture->u.data());
@@ -119,16 +124,30 @@ void control_step(benchmark::State& state, Kind kind) {
   state.counters["m"] = m;
 }
 
-void dimensions(benchmark::internal::Benchmark* b) {
-  for (const int n : {6, 12, 18, 36, 72}) b->Arg(n);
-  b->ArgName("n")->Unit(benchmark::kMicrosecond);
+void register_benchmarks() {
+  std::vector<std::pair<std::string, Make>> rows;
+  const thetad::RandomSdcPlant probe(6, 2, 1);
+  for (const std::string& name : thetad::ControllerRegistry::instance().names()) {
+    std::vector<std::string> settings{"{}"};
+    for (auto [it, end] = kVariants.equal_range(name); it != end; ++it) settings.push_back(it->second);
+    for (const std::string& block : settings) {
+      const Make make = registered(name, block);
+      try {
+        rows.emplace_back(make(probe)->name(), make);
+      } catch (const thetad::Error& error) {
+        std::fprintf(stderr, "scaling_bench: left out: %s\n", error.what());
+        break;
+      }
+    }
+  }
+  rows.emplace_back("lqr", fixed_gain);
+  for (const auto& [row, make] : rows) {
+    auto* benchmark = benchmark::RegisterBenchmark(("control_step/" + row).c_str(), control_step, row, make);
+    for (const int n : {6, 12, 18, 36, 72}) benchmark->Arg(n);
+    benchmark->ArgName("n")->Unit(benchmark::kMicrosecond);
+  }
 }
-
-BENCHMARK_CAPTURE(control_step, theta_d, Kind::theta_d)->Apply(dimensions);
-BENCHMARK_CAPTURE(control_step, sdre_cold, Kind::sdre_cold)->Apply(dimensions);
-BENCHMARK_CAPTURE(control_step, sdre_warm, Kind::sdre_warm)->Apply(dimensions);
-BENCHMARK_CAPTURE(control_step, lqr, Kind::lqr)->Apply(dimensions);
 
 }  // namespace
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) { return thetad::bench::run_benchmarks(argc, argv, register_benchmarks); }

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <random>
 #include <string>
 #include <utility>
@@ -59,21 +58,6 @@ const ControllerRegistration registration(
     });
 
 }  // namespace
-
-double perturbation_factor(double k, double l, double elapsed) { return 1.0 - k * std::exp(-l * elapsed); }
-
-double SeriesExpansion::coefficient(std::size_t j, const Eigen::Ref<const Eigen::VectorXd>& e) const {
-  double product = 1.0;
-  for (std::size_t i = 0; i < powers[j].size(); ++i)
-    for (int p = 0; p < powers[j][i]; ++p) product *= e[static_cast<Eigen::Index>(i)];
-  return product;
-}
-
-Eigen::MatrixXd SeriesExpansion::evaluate(const Eigen::Ref<const Eigen::VectorXd>& e) const {
-  Eigen::MatrixXd sum = Eigen::MatrixXd::Zero(pieces.front().rows(), pieces.front().cols());
-  for (std::size_t j = 0; j < pieces.size(); ++j) sum += coefficient(j, e) * pieces[j];
-  return sum;
-}
 
 ThetaDController::ThetaDController(const SdcPlant& model, ThetaDSettings settings)
     : model_(&model), settings_(std::move(settings)) {
@@ -160,13 +144,20 @@ void ThetaDController::require_reset(const char* caller) const {
 }
 
 void ThetaDController::prepare_series(const Eigen::VectorXd& x0) {
-  const Eigen::Index n = A0_.rows(), m = g0_.cols(), unknowns = n * (n + 1) / 2;
-  // Which coefficients of F, B vary and which rows of B can be nonzero: seen at x0 and at a few
-  // states and inputs around it. A coefficient missed here only costs time: evaluate_series()
-  // notices it and takes the general path for that pass. The generator is local and seeded
-  // because the probes are part of the set-up, not of the run's randomness.
-  std::vector<char> a_varies(static_cast<std::size_t>(n * n), 0), g_varies(static_cast<std::size_t>(n * m), 0);
-  input_row_.assign(static_cast<std::size_t>(n), 0);
+  const SdcPattern pattern = probe_sdc(x0);
+  input_row_ = pattern.input_row;
+  order_unknowns();
+  prepare_projections();
+  prepare_first_term_basis(pattern);
+}
+
+ThetaDController::SdcPattern ThetaDController::probe_sdc(const Eigen::VectorXd& x0) {
+  const Eigen::Index n = A0_.rows(), m = g0_.cols();
+  // Seen at x0 and at a few states and inputs around it. A coefficient missed here only costs
+  // time: evaluate_series() notices it and takes the general path for that pass. The generator is
+  // local and seeded because the probes are part of the set-up, not of the run's randomness.
+  SdcPattern pattern{std::vector<char>(static_cast<std::size_t>(n * n), 0),
+                     std::vector<char>(static_cast<std::size_t>(n * m), 0), std::vector<char>(static_cast<std::size_t>(n), 0)};
   std::mt19937_64 probe_generator(18);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   Eigen::VectorXd x = x0, input = settings_.initial_input;
@@ -181,14 +172,18 @@ void ThetaDController::prepare_series(const Eigen::VectorXd& x0) {
       model_->sdc(x, input, F_, B_);
     }
     for (Eigen::Index j = 0; j < n * n; ++j)
-      if (F_.data()[j] != A0_.data()[j]) a_varies[static_cast<std::size_t>(j)] = 1;
+      if (F_.data()[j] != A0_.data()[j]) pattern.a_varies[static_cast<std::size_t>(j)] = 1;
     for (Eigen::Index c = 0; c < m; ++c)
       for (Eigen::Index r = 0; r < n; ++r) {
-        if (B_(r, c) != 0.0) input_row_[static_cast<std::size_t>(r)] = 1;
-        if (B_(r, c) != g0_(r, c)) g_varies[static_cast<std::size_t>(c * n + r)] = 1;
+        if (B_(r, c) != 0.0) pattern.input_row[static_cast<std::size_t>(r)] = 1;
+        if (B_(r, c) != g0_(r, c)) pattern.g_varies[static_cast<std::size_t>(c * n + r)] = 1;
       }
   }
+  return pattern;
+}
 
+void ThetaDController::order_unknowns() {
+  const Eigen::Index n = A0_.rows(), unknowns = n * (n + 1) / 2;
   // The unknowns in the rows of B first, so that control() solves for a leading block only.
   unknown_row_.clear();
   unknown_col_.clear();
@@ -210,7 +205,10 @@ void ThetaDController::prepare_series(const Eigen::VectorXd& x0) {
       lyapunov_inverse_(a, b) =
           -lyapunov_->packed_inverse()(ConstantLyapunovSolver::packed_index(unknown_row_[a], unknown_col_[a]), from_b);
   }
+}
 
+void ThetaDController::prepare_projections() {
+  const Eigen::Index n = A0_.rows(), unknowns = n * (n + 1) / 2;
   // The projections pay when the fixed point may take several passes (spec §7.6) and their set-up
   // per step, rows·n per unknown, costs less than the partial solves they replace.
   input_rows_.clear();
@@ -219,29 +217,31 @@ void ThetaDController::prepare_series(const Eigen::VectorXd& x0) {
   const auto rows = static_cast<Eigen::Index>(input_rows_.size());
   const int passes = model_->sdc_depends_on_input() ? settings_.fixed_point_iterations : 1;
   project_last_term_ = settings_.terms >= 3 && passes > 1 && rows * (n + passes) < passes * input_row_unknowns_;
-  if (project_last_term_) {
-    std::vector<Eigen::Index> position(static_cast<std::size_t>(n * n));
-    for (Eigen::Index a = 0; a < unknowns; ++a) {
-      position[static_cast<std::size_t>(unknown_row_[a] * n + unknown_col_[a])] = a;
-      position[static_cast<std::size_t>(unknown_col_[a] * n + unknown_row_[a])] = a;
-    }
-    row_solutions_.resize(unknowns, rows * n);
-    for (Eigen::Index k = 0; k < rows; ++k)
-      for (Eigen::Index j = 0; j < n; ++j)
-        row_solutions_.col(k * n + j) =
-            lyapunov_inverse_.row(position[static_cast<std::size_t>(input_rows_[static_cast<std::size_t>(k)] * n + j)])
-                .transpose();
-    projections_.resize(unknowns, rows);
-    last_products_.resize(rows);
+  if (!project_last_term_) return;
+  std::vector<Eigen::Index> position(static_cast<std::size_t>(n * n));
+  for (Eigen::Index a = 0; a < unknowns; ++a) {
+    position[static_cast<std::size_t>(unknown_row_[a] * n + unknown_col_[a])] = a;
+    position[static_cast<std::size_t>(unknown_col_[a] * n + unknown_row_[a])] = a;
   }
+  row_solutions_.resize(unknowns, rows * n);
+  for (Eigen::Index k = 0; k < rows; ++k)
+    for (Eigen::Index j = 0; j < n; ++j)
+      row_solutions_.col(k * n + j) =
+          lyapunov_inverse_.row(position[static_cast<std::size_t>(input_rows_[static_cast<std::size_t>(k)] * n + j)])
+              .transpose();
+  projections_.resize(unknowns, rows);
+  last_products_.resize(rows);
+}
 
+void ThetaDController::prepare_first_term_basis(const SdcPattern& pattern) {
+  const Eigen::Index n = A0_.rows(), unknowns = n * (n + 1) / 2;
   // Eq. (22b) for a unit coefficient, W1 = M + Mᵀ with M = −T0 Ã + T0 g0 R⁻¹ g̃ᵀ T0:
   // Ã = e_r e_cᵀ gives M(:, c) = −T0(:, r); g̃ = e_r e_cᵀ gives M = (Y0 L⁻ᵀ(c, :)ᵀ) T0(r, :).
   Eigen::Index count = 0;
-  for (const char varies : a_varies) count += varies;
-  for (const char varies : g_varies) count += varies;
-  a_slot_.assign(a_varies.size(), -1);
-  g_slot_.assign(g_varies.size(), -1);
+  for (const char varies : pattern.a_varies) count += varies;
+  for (const char varies : pattern.g_varies) count += varies;
+  a_slot_.assign(pattern.a_varies.size(), -1);
+  g_slot_.assign(pattern.g_varies.size(), -1);
   if (count >= unknowns) {
     basis_.resize(unknowns, 0);
     coefficients_.resize(0);
@@ -254,16 +254,16 @@ void ThetaDController::prepare_series(const Eigen::VectorXd& x0) {
       right_sides(a, slot) = M_(unknown_row_[a], unknown_col_[a]) + M_(unknown_col_[a], unknown_row_[a]);
     ++slot;
   };
-  for (std::size_t j = 0; j < a_varies.size(); ++j) {
-    if (!a_varies[j]) continue;
+  for (std::size_t j = 0; j < pattern.a_varies.size(); ++j) {
+    if (!pattern.a_varies[j]) continue;
     a_slot_[j] = slot;
     const auto r = static_cast<Eigen::Index>(j) % n, c = static_cast<Eigen::Index>(j) / n;
     M_.setZero();
     M_.col(c) = -T_[0].col(r);
     add_column();
   }
-  for (std::size_t j = 0; j < g_varies.size(); ++j) {
-    if (!g_varies[j]) continue;
+  for (std::size_t j = 0; j < pattern.g_varies.size(); ++j) {
+    if (!pattern.g_varies[j]) continue;
     g_slot_[j] = slot;
     const auto r = static_cast<Eigen::Index>(j) % n, c = static_cast<Eigen::Index>(j) / n;
     M_.noalias() = (Y_[0] * R_inverse_sqrt_t_.row(c).transpose()) * T_[0].row(r);
@@ -273,14 +273,14 @@ void ThetaDController::prepare_series(const Eigen::VectorXd& x0) {
   coefficients_.resize(count);
 }
 
-ThetaDController::LastTerm ThetaDController::evaluate_series(const Eigen::Ref<const Eigen::VectorXd>& x,
-                                                             const Eigen::Ref<const Eigen::VectorXd>& input, double t,
-                                                             LastTerm wanted) {
-  const Eigen::Index n = F_.rows(), m = B_.cols(), unknowns = n * (n + 1) / 2;
+ThetaDController::Deviation ThetaDController::gather_deviation(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                                                const Eigen::Ref<const Eigen::VectorXd>& input,
+                                                                LastTerm wanted) {
+  const Eigen::Index n = F_.rows(), m = B_.cols();
   model_->sdc(x, input, F_, B_);
   // Eq. (31) with θ = 1 (spec §5.7): Ã = F − A0 kept as its nonzero coefficients, g̃ = B − g0
   // scaled by L⁻ᵀ; the varying ones also into c for T1 = e1 · basis_ · c.
-  bool in_basis = true;
+  Deviation deviation{true, wanted != LastTerm::full && T_.size() > 1};
   coefficients_.setZero();
   a_tilde_count_ = 0;
   for (Eigen::Index c = 0; c < n; ++c)
@@ -291,52 +291,63 @@ ThetaDController::LastTerm ThetaDController::evaluate_series(const Eigen::Ref<co
       a_tilde_cols_[a_tilde_count_] = c;
       a_tilde_values_[a_tilde_count_++] = value;
       const Eigen::Index slot = a_slot_[static_cast<std::size_t>(c * n + r)];
-      if (slot < 0) in_basis = false; else coefficients_[slot] = value;
+      if (slot < 0) deviation.in_basis = false; else coefficients_[slot] = value;
     }
-  bool input_rows_only = wanted != LastTerm::full && T_.size() > 1;
   for (Eigen::Index c = 0; c < m; ++c)
     for (Eigen::Index r = 0; r < n; ++r) {
-      if (B_(r, c) != 0.0 && !input_row_[static_cast<std::size_t>(r)]) input_rows_only = false;
+      if (B_(r, c) != 0.0 && !input_row_[static_cast<std::size_t>(r)]) deviation.input_rows_only = false;
       const double value = B_(r, c) - g0_(r, c);
       if (value == 0.0) continue;
       const Eigen::Index slot = g_slot_[static_cast<std::size_t>(c * n + r)];
-      if (slot < 0) in_basis = false; else coefficients_[slot] = value;
+      if (slot < 0) deviation.in_basis = false; else coefficients_[slot] = value;
     }
   g_tilde_scaled_.noalias() = B_ * R_inverse_sqrt_t_;
   g_tilde_scaled_ -= g0_scaled_;
   Z_[0].noalias() = T_[0] * g_tilde_scaled_;
+  return deviation;
+}
 
+void ThetaDController::form_right_side(std::size_t i) {
+  const Eigen::Index n = F_.rows(), m = B_.cols(), unknowns = n * (n + 1) / 2;
+  // Eqs. (22b–d) for general i (spec §5.4), W_i = M + Mᵀ with
+  //   M = −T_{i−1} Ã + Σ_{j<i} T_j g0 R⁻¹ g̃ᵀ T_{i−1−j} + ½ Σ_{j≤i−2} T_j S2 T_{i−2−j} + ½ Σ_{1≤j<i} T_j G0 T_{i−j}:
+  // the S1 sum is X + Xᵀ of its first half, the S2 and G0 sums are symmetric on their own.
+  // S1, S2, G0 enter only through the rank-m factors Y_j = T_j g0 L⁻ᵀ and Z_j = T_j g̃ L⁻ᵀ,
+  // gathered side by side so that the sums are one product.
+  const Eigen::MatrixXd& previous = T_[i - 1];
+  M_.setZero();
+  for (std::size_t k = 0; k < a_tilde_count_; ++k)
+    M_.col(a_tilde_cols_[k]) -= a_tilde_values_[k] * previous.col(a_tilde_rows_[k]);
+  Eigen::Index rank = 0;
+  auto add = [&](double weight, const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
+    left_.middleCols(rank, m) = weight * a;
+    right_.middleCols(rank, m) = b;
+    rank += m;
+  };
+  for (std::size_t j = 0; j < i; ++j) add(1.0, Y_[j], Z_[i - 1 - j]);
+  for (std::size_t j = 0; j + 2 <= i; ++j) add(0.5, Z_[j], Z_[i - 2 - j]);
+  for (std::size_t j = 1; j < i; ++j) add(0.5, Y_[j], Y_[i - j]);
+  M_.noalias() += left_.leftCols(rank) * right_.leftCols(rank).transpose();
+  for (Eigen::Index a = 0; a < unknowns; ++a)
+    packed_right_[a] = M_(unknown_row_[a], unknown_col_[a]) + M_(unknown_col_[a], unknown_row_[a]);
+}
+
+ThetaDController::LastTerm ThetaDController::evaluate_series(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                                             const Eigen::Ref<const Eigen::VectorXd>& input, double t,
+                                                             LastTerm wanted) {
+  const Eigen::Index n = F_.rows(), unknowns = n * (n + 1) / 2;
+  const Deviation deviation = gather_deviation(x, input, wanted);
   for (std::size_t i = 1; i < T_.size(); ++i) {
     const bool last_term = i + 1 == T_.size();
-    const LastTerm form = last_term && input_rows_only ? wanted : LastTerm::full;
+    const LastTerm form = last_term && deviation.input_rows_only ? wanted : LastTerm::full;
     const Eigen::Index solved = form == LastTerm::input_rows ? input_row_unknowns_ : unknowns;
     // Eqs. (24)–(25): T_i Ac0 + Ac0ᵀ T_i = e_i(t) W_i.
     const double e = perturbation_factor(settings_.k[static_cast<Eigen::Index>(i - 1)],
                                          settings_.l[static_cast<Eigen::Index>(i - 1)], t - t0_);
-    if (i == 1 && in_basis) {
+    if (i == 1 && deviation.in_basis) {
       packed_term_.head(solved).noalias() = e * (basis_.topRows(solved) * coefficients_);
     } else {
-      // Eqs. (22b–d) for general i (spec §5.4), W_i = M + Mᵀ with
-      //   M = −T_{i−1} Ã + Σ_{j<i} T_j g0 R⁻¹ g̃ᵀ T_{i−1−j} + ½ Σ_{j≤i−2} T_j S2 T_{i−2−j} + ½ Σ_{1≤j<i} T_j G0 T_{i−j}:
-      // the S1 sum is X + Xᵀ of its first half, the S2 and G0 sums are symmetric on their own.
-      // S1, S2, G0 enter only through the rank-m factors Y_j = T_j g0 L⁻ᵀ and Z_j = T_j g̃ L⁻ᵀ,
-      // gathered side by side so that the sums are one product.
-      const Eigen::MatrixXd& previous = T_[i - 1];
-      M_.setZero();
-      for (std::size_t k = 0; k < a_tilde_count_; ++k)
-        M_.col(a_tilde_cols_[k]) -= a_tilde_values_[k] * previous.col(a_tilde_rows_[k]);
-      Eigen::Index rank = 0;
-      auto add = [&](double weight, const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
-        left_.middleCols(rank, m) = weight * a;
-        right_.middleCols(rank, m) = b;
-        rank += m;
-      };
-      for (std::size_t j = 0; j < i; ++j) add(1.0, Y_[j], Z_[i - 1 - j]);
-      for (std::size_t j = 0; j + 2 <= i; ++j) add(0.5, Z_[j], Z_[i - 2 - j]);
-      for (std::size_t j = 1; j < i; ++j) add(0.5, Y_[j], Y_[i - j]);
-      M_.noalias() += left_.leftCols(rank) * right_.leftCols(rank).transpose();
-      for (Eigen::Index a = 0; a < unknowns; ++a)
-        packed_right_[a] = M_(unknown_row_[a], unknown_col_[a]) + M_(unknown_col_[a], unknown_row_[a]);
+      form_right_side(i);
       if (form == LastTerm::input_row_products) {
         last_products_.noalias() = e * (projections_.transpose() * packed_right_);
         return form;
@@ -405,66 +416,6 @@ void ThetaDController::control(double t, const Eigen::Ref<const Eigen::VectorXd>
   }
   applied_ = guess_;
   u = guess_;
-}
-
-SeriesExpansion ThetaDController::series_expansion(const Eigen::VectorXd& x, const Eigen::VectorXd& input) {
-  require_reset("series_expansion");
-  const Eigen::Index n = F_.rows();
-  if (x.size() != n || input.size() != B_.cols())
-    throw Error("theta-d: series_expansion needs a state of " + std::to_string(n) + " and an input of " +
-                std::to_string(B_.cols()) + " entries");
-  // The recursion of spec §5.4 on polynomials in e: each T_i maps a monomial (its exponent
-  // vector; std::map keeps the order, hence the pieces, deterministic) to its matrix.
-  using Polynomial = std::map<std::vector<int>, Eigen::MatrixXd>;
-  const SdcPlant::Coefficients sdc = model_->sdc(x, input);
-  const Eigen::MatrixXd A_tilde = sdc.F - A0_;
-  const Eigen::MatrixXd g_tilde_scaled = sdc.B * R_inverse_sqrt_t_ - g0_scaled_;
-  const Eigen::MatrixXd S1 = g0_scaled_ * g_tilde_scaled.transpose() + g_tilde_scaled * g0_scaled_.transpose();
-  const Eigen::MatrixXd S2 = g_tilde_scaled * g_tilde_scaled.transpose();
-  const Eigen::MatrixXd G0 = g0_scaled_ * g0_scaled_.transpose();
-  const std::size_t terms = T_.size();
-  std::vector<Polynomial> T(terms);
-  T[0].emplace(std::vector<int>(terms - 1, 0), T_[0]);
-
-  const auto term_of = [n](Polynomial& W, const std::vector<int>& monomial) -> Eigen::MatrixXd& {
-    return W.try_emplace(monomial, Eigen::MatrixXd::Zero(n, n)).first->second;
-  };
-  // W += a S b, monomials multiplying.
-  const auto add_products = [&](Polynomial& W, const Polynomial& a, const Eigen::MatrixXd& S, const Polynomial& b) {
-    for (const auto& [pa, A] : a)
-      for (const auto& [pb, B] : b) {
-        std::vector<int> monomial = pa;
-        for (std::size_t i = 0; i < monomial.size(); ++i) monomial[i] += pb[i];
-        term_of(W, monomial).noalias() += A * S * B;
-      }
-  };
-  for (std::size_t i = 1; i < terms; ++i) {
-    // W_i of spec §5.4 with the already scaled T_1 … T_{i−1}.
-    Polynomial W;
-    for (const auto& [p, C] : T[i - 1]) {
-      Eigen::MatrixXd& w = term_of(W, p);
-      w.noalias() -= C * A_tilde;
-      w.noalias() -= A_tilde.transpose() * C;
-    }
-    for (std::size_t j = 0; j + 2 <= i; ++j) add_products(W, T[j], S2, T[i - 2 - j]);
-    for (std::size_t j = 0; j < i; ++j) add_products(W, T[j], S1, T[i - 1 - j]);
-    for (std::size_t j = 1; j < i; ++j) add_products(W, T[j], G0, T[i - j]);
-    // T_i = e_i L⁻¹(W_i): the solver's Ac0ᵀX + XAc0 + Q = 0 with Q = −W. Each piece is symmetric
-    // only up to rounding (the sums pair A S B with B S A), so it is symmetrized for the solver.
-    for (const auto& [p, Wp] : W) {
-      std::vector<int> monomial = p;
-      ++monomial[i - 1];
-      const Eigen::MatrixXd Q = -0.5 * (Wp + Wp.transpose());
-      T[i].emplace(std::move(monomial), lyapunov_->solve(Q));
-    }
-  }
-  SeriesExpansion expansion;
-  for (Polynomial& term : T)
-    for (auto& [p, C] : term) {
-      expansion.powers.push_back(p);
-      expansion.pieces.push_back(std::move(C));
-    }
-  return expansion;
 }
 
 }  // namespace thetad

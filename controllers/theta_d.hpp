@@ -18,6 +18,7 @@
 #include <Eigen/Core>
 
 #include "controllers/controller.hpp"
+#include "controllers/theta_d_series.hpp"
 #include "core/lyapunov.hpp"
 #include "core/sdc_plant.hpp"
 
@@ -40,24 +41,6 @@ struct ThetaDSettings {
   // input (spec §7.6); 1 is the one-step-lag variant. Stops early when max|Δu| < tolerance.
   int fixed_point_iterations = 3;
   double fixed_point_tolerance = 1e-6;
-};
-
-// e_i(t) = 1 − k_i exp(−l_i (t − t0)) of Eq. (25), at elapsed = t − t0.
-double perturbation_factor(double k, double l, double elapsed);
-
-// ΣT_i(x, t) as a polynomial in e_1(t) … e_{N−1}(t) (spec §7.5). T_i = e_i L⁻¹(W_i) and W_i is
-// linear and bilinear in T_0 … T_{i−1}, so the sum is Σ_j (Π_i e_i^powers[j][i]) pieces[j] with
-// pieces that depend on the state alone: computed once per state, ΣT for any k, l and t costs a
-// few additions and no Lyapunov solve (the tuner's cheap exact evaluation). With N = 3 the pieces
-// are T0, T1° (monomial e1), T2a (e2), T2b (e1 e2) and T2c (e1² e2).
-struct SeriesExpansion {
-  std::vector<std::vector<int>> powers;  // powers[j][i]: exponent of e_{i+1} in the monomial of pieces[j]
-  std::vector<Eigen::MatrixXd> pieces;   // symmetric n×n; pieces[0] = T0 (the empty monomial)
-
-  // Π_i e_i^powers[j][i] for e = (e_1 … e_{N−1}), by repeated products (exact for e = 0 or 1).
-  double coefficient(std::size_t j, const Eigen::Ref<const Eigen::VectorXd>& e) const;
-  // Σ_j coefficient(j, e) pieces[j].
-  Eigen::MatrixXd evaluate(const Eigen::Ref<const Eigen::VectorXd>& e) const;
 };
 
 class ThetaDController final : public Controller {
@@ -113,9 +96,32 @@ class ThetaDController final : public Controller {
   // Returns the form it took.
   LastTerm evaluate_series(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& input,
                            double t, LastTerm wanted);
+  // How F(x; input), B(x; input) differ from A0, g0, for one pass of evaluate_series().
+  struct Deviation {
+    bool in_basis;         // every nonzero of Ã and g̃ has a slot in basis_: T1 is one product
+    bool input_rows_only;  // B has no nonzero outside the input rows: the last term may be partial
+  };
+  // Evaluates the SDC into F_, B_ and gathers Ã (a_tilde_*), c of basis_ (coefficients_), g̃ L⁻ᵀ
+  // and Z_[0].
+  Deviation gather_deviation(const Eigen::Ref<const Eigen::VectorXd>& x,
+                             const Eigen::Ref<const Eigen::VectorXd>& input, LastTerm wanted);
+  // W_i of term i ≥ 1 from T_0 … T_{i−1}, packed into packed_right_ (through M_).
+  void form_right_side(std::size_t i);
+
   // The part of reset() that needs T0 and Ac0: the packed Lyapunov inverse in the order below and
   // the solutions T1 for each varying coefficient.
   void prepare_series(const Eigen::VectorXd& x0);
+  // Which coefficients of F (column-major, n²) and B (n·m) vary and which rows of B can be nonzero.
+  struct SdcPattern {
+    std::vector<char> a_varies, g_varies, input_row;
+  };
+  SdcPattern probe_sdc(const Eigen::VectorXd& x0);
+  // unknown_row_, unknown_col_, input_row_unknowns_ and lyapunov_inverse_ from input_row_.
+  void order_unknowns();
+  // input_rows_ and, where they pay, the projections of the last term (see projections_).
+  void prepare_projections();
+  // a_slot_, g_slot_ and basis_: T1 for each coefficient of `pattern` that varies.
+  void prepare_first_term_basis(const SdcPattern& pattern);
 
   const SdcPlant* model_;
   ThetaDSettings settings_;

@@ -58,39 +58,15 @@ AirData air_data(const Environment& environment, const Eigen::Ref<const Eigen::V
   return a;
 }
 
-Forces evaluate_forces(const Parameters& p, const ModelOptions& options, const Environment& environment,
-                       const AirData& air, const Eigen::Ref<const Eigen::VectorXd>& x, double rotor_speed) {
-  if (!(rotor_speed > 0.0) || !std::isfinite(rotor_speed)) {
-    std::ostringstream message;
-    message << "helicopter: main-rotor speed " << rotor_speed << " rad/s is not positive and finite";
-    throw Error(message.str());
-  }
-  const double rho = p.rho, m = p.mass, r_mr = p.radius_mr;
-  const double u_a = air.u_a, v_a = air.v_a, w_a = air.w_a;
+namespace {
+
+// Tail rotor, vertical fin and horizontal tail of `f`, from its air data, induced velocities and
+// wake factor.
+void fill_tail_forces(const Parameters& p, const ModelOptions& options, const Eigen::Ref<const Eigen::VectorXd>& x,
+                      Forces& f) {
+  const double rho = p.rho, m = p.mass;
+  const double u_a = f.air.u_a, v_a = f.air.v_a, w_a = f.air.w_a;
   const double p_rate = x[kP], q_rate = x[kQ], r_rate = x[kR];
-  const double sigma = p.solidity(options.solidity);
-
-  Forces f;
-  f.air = air;
-  f.rotor_speed = rotor_speed;
-  const double tip_speed = rotor_speed * r_mr;
-  f.advance_ratio = std::sqrt(u_a * u_a + v_a * v_a) / tip_speed;  // A5
-  f.inflow_normal = w_a / tip_speed;                                  // A6
-  const double mu = f.advance_ratio, mu_z = f.inflow_normal;
-
-  // constant induced velocity, or the one of the constant-lambda0 thrust model.
-  const double induced_main_model =
-      options.induced_velocity_model == ModelOptions::InducedVelocityModel::constant ? p.v_imr : p.lambda0 * tip_speed;
-  f.induced_main = environment.induced_main_scale * induced_main_model;
-  f.induced_tail = environment.induced_tail_scale * p.v_itr;
-  f.wake_factor = wake_factor(p, u_a, w_a, f.induced_main);
-
-  // Fuselage, A7-A9, with the downwash sign of A-8.
-  const double w_fus = w_a + options.fuselage_downwash_sign * f.induced_main;
-  const double v_inf = std::sqrt(u_a * u_a + v_a * v_a + w_fus * w_fus);
-  f.x_fus = -0.5 * rho * p.cd_x * p.s_fus_x * u_a * v_inf;
-  f.y_fus = -0.5 * rho * p.cd_y * p.s_fus_y * v_a * v_inf;
-  f.z_fus = -0.5 * rho * p.cd_z * p.s_fus_z * w_fus * v_inf;
 
   // Tail rotor, velocity part (§2.7.5; sign of Y_v^tr: A-9) and its moments (App. B).
   const double v_tr = v_a - p.l_tr * r_rate + p.h_tr * p_rate;
@@ -113,6 +89,14 @@ Forces evaluate_forces(const Parameters& p, const ModelOptions& options, const E
       options.horizontal_tail_sign * 0.5 * rho * p.s_ht * (p.cla_ht * std::abs(u_a) * w_ht + std::abs(w_ht) * w_ht);
   f.z_ht = clamp_magnitude(z_ht, 0.5 * rho * p.s_ht * (u_a * u_a + w_ht * w_ht));
   f.m_ht = p.l_ht * f.z_ht;
+}
+
+// Main- and tail-rotor torques and the yaw inertia of `f`, from its rotor speed and inflow.
+void fill_rotor_torques(const Parameters& p, const ModelOptions& options, Forces& f) {
+  const double rho = p.rho, r_mr = p.radius_mr;
+  const double tip_speed = f.rotor_speed * r_mr;
+  const double mu = f.advance_ratio, mu_z = f.inflow_normal;
+  const double sigma = p.solidity(options.solidity);
 
   // Main-rotor torque (App. B): C_T consistent with A4, C_Qmr = C_T (lambda0 - mu_z) + profile.
   const double inflow = p.lambda0 - mu_z;
@@ -122,15 +106,23 @@ Forces evaluate_forces(const Parameters& p, const ModelOptions& options, const E
 
   // Tail-rotor profile torque at Omega_tr = n_tr Omega_mr.
   if (options.tail_rotor_torque == ModelOptions::TailRotorTorque::profile) {
-    const double omega_tr = p.gear_tr * rotor_speed;
+    const double omega_tr = p.gear_tr * f.rotor_speed;
     f.q_tr = rho * std::numbers::pi * std::pow(p.radius_tr, 5) * omega_tr * omega_tr * p.cd0_tr *
              p.tail_rotor_solidity() / 8.0;
   } else {
     f.q_tr = 0.0;
   }
   f.yaw_inertia = p.effective_yaw_inertia(options.yaw_inertia);
+}
 
-  // Flapping speed derivatives, §2.5 resolved form; paper-literal with the paper switches.
+// Flapping speed derivatives of `f`, §2.5 resolved form; paper-literal with the
+// paper switches.
+void fill_flapping_derivatives(const Parameters& p, const ModelOptions& options, Forces& f) {
+  const double u_a = f.air.u_a, v_a = f.air.v_a, w_a = f.air.w_a;
+  const double tip_speed = f.rotor_speed * p.radius_mr;
+  const double mu = f.advance_ratio;
+  const double sigma = p.solidity(options.solidity);
+
   const double flap_scale = 1.0 / (p.tau_e * tip_speed);
   const double sign_mu =
       options.flap_inflow_sign_source == ModelOptions::FlapInflowSignSource::u_a && u_a < 0.0 ? -1.0 : 1.0;
@@ -142,9 +134,47 @@ Forces evaluate_forces(const Parameters& p, const ModelOptions& options, const E
   f.b1_speed = s_b * c_col0 * v_a * flap_scale;
   f.a1_per_collective = c_col_per_input * u_a * flap_scale;
   f.b1_per_collective = s_b * c_col_per_input * v_a * flap_scale;
-  const double speed_ratio = rotor_speed / p.omega_nom;
+  const double speed_ratio = f.rotor_speed / p.omega_nom;
   f.a1_per_lon = p.a_lon_nom / p.tau_e * speed_ratio * speed_ratio;
   f.b1_per_lat = p.b_lat_nom / p.tau_e * speed_ratio * speed_ratio;
+}
+
+}  // namespace
+
+Forces evaluate_forces(const Parameters& p, const ModelOptions& options, const Environment& environment,
+                       const AirData& air, const Eigen::Ref<const Eigen::VectorXd>& x, double rotor_speed) {
+  if (!(rotor_speed > 0.0) || !std::isfinite(rotor_speed)) {
+    std::ostringstream message;
+    message << "helicopter: main-rotor speed " << rotor_speed << " rad/s is not positive and finite";
+    throw Error(message.str());
+  }
+  const double rho = p.rho, r_mr = p.radius_mr;
+  const double u_a = air.u_a, v_a = air.v_a, w_a = air.w_a;
+
+  Forces f;
+  f.air = air;
+  f.rotor_speed = rotor_speed;
+  const double tip_speed = rotor_speed * r_mr;
+  f.advance_ratio = std::sqrt(u_a * u_a + v_a * v_a) / tip_speed;  // A5
+  f.inflow_normal = w_a / tip_speed;                                  // A6
+
+  // constant induced velocity, or the one of the constant-lambda0 thrust model.
+  const double induced_main_model =
+      options.induced_velocity_model == ModelOptions::InducedVelocityModel::constant ? p.v_imr : p.lambda0 * tip_speed;
+  f.induced_main = environment.induced_main_scale * induced_main_model;
+  f.induced_tail = environment.induced_tail_scale * p.v_itr;
+  f.wake_factor = wake_factor(p, u_a, w_a, f.induced_main);
+
+  // Fuselage, A7-A9, with the downwash sign of A-8.
+  const double w_fus = w_a + options.fuselage_downwash_sign * f.induced_main;
+  const double v_inf = std::sqrt(u_a * u_a + v_a * v_a + w_fus * w_fus);
+  f.x_fus = -0.5 * rho * p.cd_x * p.s_fus_x * u_a * v_inf;
+  f.y_fus = -0.5 * rho * p.cd_y * p.s_fus_y * v_a * v_inf;
+  f.z_fus = -0.5 * rho * p.cd_z * p.s_fus_z * w_fus * v_inf;
+
+  fill_tail_forces(p, options, x, f);
+  fill_rotor_torques(p, options, f);
+  fill_flapping_derivatives(p, options, f);
   return f;
 }
 

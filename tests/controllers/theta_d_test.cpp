@@ -21,8 +21,8 @@
 #include "core/error.hpp"
 #include "core/helicopter/helicopter.hpp"
 #include "core/riccati.hpp"
-#include "core/test_plants.hpp"
 #include "tests/heap_counter.hpp"
+#include "tests/test_plants.hpp"
 
 namespace thetad {
 namespace {

@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "controllers/theta_d.hpp"
-#include "core/test_plants.hpp"
+#include "tests/test_plants.hpp"
 #include "tests/tuning/helicopter_theta_d.hpp"
 
 namespace thetad {

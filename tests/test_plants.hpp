@@ -1,8 +1,8 @@
 #pragma once
 
-// Small SDC plants for controller tests: one whose SDRE solution is known in closed form, and a
-// generic n-dimensional one. Neither knows anything about helicopters; both satisfy
-// F(x; u) x + B(x; u) u == f(x, u) exactly (f is defined through F and B).
+// Small SDC plants for the controller tests and the scaling benchmark: one whose SDRE solution is
+// known in closed form, and a generic n-dimensional one. Neither knows anything about helicopters;
+// both satisfy F(x; u) x + B(x; u) u == f(x, u) exactly (f is defined through F and B).
 
 #include <cstdint>
 

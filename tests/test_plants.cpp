@@ -1,4 +1,4 @@
-#include "core/test_plants.hpp"
+#include "tests/test_plants.hpp"
 
 #include <cmath>
 #include <random>
