@@ -42,13 +42,14 @@ Eigen::VectorXd series_parameter(const char* what, const Eigen::VectorXd& given,
 const ControllerRegistration registration(
     "theta-d", "theta-D series T0 + ... + T_{N-1} around the initial state (paper-spec §5, §7)",
     [](const Settings& settings, const ControllerContext& context) -> std::unique_ptr<Controller> {
-      settings.allow_only({"terms", "k", "l", "fixed_point_iterations", "fixed_point_tolerance", "Q", "R"});
+      settings.allow_only({theta_d_keys::terms, theta_d_keys::k, theta_d_keys::l, "fixed_point_iterations",
+                           "fixed_point_tolerance", "Q", "R"});
       const DesignDefaults& defaults = context.defaults;
       ThetaDSettings s;
-      s.terms = settings.integer("terms", s.terms, 1);
+      s.terms = settings.integer(theta_d_keys::terms, s.terms, 1);
       const Eigen::VectorXd ones = Eigen::VectorXd::Ones(s.terms - 1);
-      s.k = settings.vector("k", ones, s.terms - 1);
-      s.l = settings.vector("l", ones, s.terms - 1, 0.0);
+      s.k = settings.vector(theta_d_keys::k, ones, s.terms - 1);
+      s.l = settings.vector(theta_d_keys::l, ones, s.terms - 1, 0.0);
       s.fixed_point_iterations = settings.integer("fixed_point_iterations", s.fixed_point_iterations, 1);
       s.fixed_point_tolerance = settings.number("fixed_point_tolerance", s.fixed_point_tolerance, 0.0);
       s.Q = settings.diagonal_weight("Q", defaults.state_weights, Settings::Weight::positive_semidefinite);

@@ -24,6 +24,14 @@
 
 namespace thetad {
 
+// The keys of the registered theta-d's settings block that a program writing one sets (`thetad
+// tune` writes k, l and terms): defined here once, for the factory and the writers alike.
+namespace theta_d_keys {
+inline constexpr const char* terms = "terms";
+inline constexpr const char* k = "k";
+inline constexpr const char* l = "l";
+}  // namespace theta_d_keys
+
 struct ThetaDSettings {
   // N: the series T0 + T1 + … + T_{N−1} (spec §5.8: the paper uses N = 3). N ≥ 1.
   int terms = 3;

@@ -52,10 +52,10 @@ std::filesystem::path default_holdout(const std::filesystem::path& scenario) {
 PreparedController make_theta_d(const Flight& flight, const YAML::Node& base, const std::string& label, int terms,
                                 const Eigen::VectorXd& k, const Eigen::VectorXd& l) {
   YAML::Node block = base ? YAML::Clone(base) : YAML::Node(YAML::NodeType::Map);
-  block["terms"] = terms;
+  block[theta_d_keys::terms] = terms;
   const auto values = [](const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); };
-  if (k.size() > 0) block["k"] = values(k);
-  if (l.size() > 0) block["l"] = values(l);
+  if (k.size() > 0) block[theta_d_keys::k] = values(k);
+  if (l.size() > 0) block[theta_d_keys::l] = values(l);
   return flight.prepare({label, "theta-d", block, {}});
 }
 

@@ -140,6 +140,27 @@ TEST_F(RunOutputs, SummaryOnlyWritesACompleteResultAndNoLog) {
   EXPECT_EQ(run.result["provenance"]["scenario"]["sha256"].get<std::string>().size(), 64u);
 }
 
+TEST_F(RunOutputs, AReplayFliesTheRecordedRunAgainAndSaysWhetherItAgrees) {
+  ASSERT_EQ(thetad("run --scenario " + path("hover.yaml") + " --controller paper=theta-d --seed 4 --log-every 3 --out " +
+                   path("out")).status, 0);
+  Output output = thetad("run --replay " + path("out/paper.json"));
+  EXPECT_EQ(output.status, 0) << output.err;
+  EXPECT_THAT(output.out, HasSubstr("agrees with the recorded run"));
+
+  std::string result = thetad::testing::read_text(dir_ / "out" / "paper.json");
+  result.insert(result.find("\"J\": ") + 5, "9");
+  write("edited.json", result);
+  output = thetad("run --replay " + path("edited.json"));
+  EXPECT_EQ(output.status, 4);
+  EXPECT_THAT(output.out, HasSubstr("DIFFERS"));
+  EXPECT_THAT(output.out, HasSubstr("cost: recorded"));
+
+  write("not-a-result.json", "{}");
+  output = thetad("run --replay " + path("not-a-result.json"));
+  EXPECT_EQ(output.status, 1);
+  EXPECT_THAT(output.err, HasSubstr("not a thetad run result"));
+}
+
 TEST_F(RunOutputs, TheOutputFolderIsCheckedBeforeAnythingFlies) {
   write("file", "not a folder");
   const Output output = thetad("run --scenario " + path("hover.yaml") + " --controller lqr --out " + path("file"));

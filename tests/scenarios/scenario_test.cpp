@@ -112,6 +112,24 @@ TEST(Scenario, SimulationOverridesApply) {
   heli::ModelOptions expected = heli::ModelOptions::paper();
   expected.yaw_inertia = heli::ModelOptions::YawInertia::izz;
   EXPECT_EQ(scenario.model_options, expected);
+  EXPECT_EQ(scenario.model_preset, "paper");
+}
+
+TEST(Scenario, RunControlsInTheSimulationBlock) {
+  const Scenario scenario = parse_scenario(kHeader + kTakeoff + kHover +
+                                               "simulation:\n  duration: 4.5\n  log_every: 10\n  summary_only: true\n"
+                                               "  timing: false\n",
+                                           "test.yaml");
+  const sim::SimulationSettings settings = scenario.simulation_settings();
+  EXPECT_EQ(settings.duration, 4.5);
+  EXPECT_EQ(settings.log_every, 10);
+  EXPECT_FALSE(settings.keep_log);
+  EXPECT_FALSE(settings.measure_compute_time);
+  EXPECT_EQ(scenario.model_preset, "resolved");
+  EXPECT_THAT(error_of(kHeader + kTakeoff + kHover + "simulation:\n  log_every: 0\n"),
+              HasSubstr("field 'simulation.log_every': expected an integer in [1, "));
+  EXPECT_THAT(error_of(kHeader + kTakeoff + kHover + "simulation:\n  duration: 1e6\n"),
+              HasSubstr("field 'simulation.duration': at most 86400 s (one simulated day)"));
 }
 
 TEST(Scenario, InitialPositionStartsTheCommand) {

@@ -10,6 +10,7 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "tests/apps/run_thetad.hpp"
 #include "tests/scratch_directory.hpp"
@@ -28,7 +29,7 @@ class TuneCommand : public ::testing::Test {
   void SetUp() override {
     // Two seconds of a slow climb: the smallest flight with a trajectory to tune on.
     std::ofstream(dir_ / "climb.yaml") << "name: climb\nduration: 2\nphases:\n  - name: up\n    type: ramp\n"
-                                          "    time: [0, 2]\n    to: [0, 0, 1]\n";
+                                          "    time: [0, 2]\n    to: [0, 0, 1]\nsimulation:\n  seed: 7\n";
   }
   Output thetad(const std::string& arguments) const { return thetad::testing::run_thetad(dir_, arguments); }
   std::string path(const std::string& name) const { return (dir_ / name).string(); }
@@ -87,6 +88,19 @@ TEST_F(TuneCommand, WritesASettingsFileThatRunAcceptsAndReusesItsRecord) {
   const Output run = thetad("run --scenario " + path("climb.yaml") + " --ideal --controller theta-d --settings " +
                             path("out/theta-d-tuned.yaml") + " --out " + path("run"));
   EXPECT_EQ(run.status, 0) << run.err;
+  // The settings file is a controller spec's file: default and tuned side by side, and the tuned
+  // one flies exactly what the tuner validated.
+  const Output compare = thetad("compare --scenario " + path("climb.yaml") + " --ideal --controllers paper=theta-d," +
+                                "tuned=theta-d:" + path("out/theta-d-tuned.yaml") + " --out " + path("compare"));
+  ASSERT_EQ(compare.status, 0) << compare.err;
+  const auto tuning = nlohmann::json::parse(thetad::testing::read_text(dir_ / "out" / "tuning.json"));
+  const auto tuned = nlohmann::json::parse(thetad::testing::read_text(dir_ / "compare" / "tuned.json"));
+  EXPECT_EQ(tuned["controller_settings"]["k"], tuning["k"]);
+  EXPECT_EQ(tuned["controller_settings"]["l"], tuning["l"]);
+  EXPECT_EQ(tuned["cost"]["J"], tuning["validation"][1]["cost"]);
+  EXPECT_EQ(tuning["validation"][1]["parameters"], "tuned");
+  // The fit's seed is the scenario's (7), not the command line's default.
+  EXPECT_EQ(tuning["seed"], 7);
 
   // Reusing the record skips the flight and gives the same fit, bit for bit.
   const Output second = thetad(tune("--record " + path("record.csv") + " --no-validation"));
