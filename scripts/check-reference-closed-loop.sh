@@ -19,7 +19,7 @@ references=(
 status=0
 for row in "${references[@]}"; do
   read -r scenario rx ry rz <<<"$row"
-  "$thetad" run --scenario "scenarios/$scenario.yaml" --controller theta-d --ideal --out "$out/$scenario" >/dev/null
+  "$thetad" run --scenario "scenarios/$scenario.yaml" --controller theta-d --ideal --summary-only --quiet --out "$out/$scenario" >/dev/null
   python3 - "$out/$scenario/theta-d.json" "$scenario" "$rx" "$ry" "$rz" <<'PY' || status=1
 import json, sys
 path, scenario, *reference = sys.argv[1:]
