@@ -12,6 +12,7 @@
 #include "core/error.hpp"
 #include "core/helicopter/state.hpp"
 #include "core/helicopter/uncertainty.hpp"
+#include "core/sim/rk4.hpp"
 #include "core/sim/run_metrics.hpp"
 
 namespace thetad::sim {
@@ -92,38 +93,6 @@ std::string failure_reason(const char* source, const std::exception& error, doub
   return buffer + std::string(error.what());
 }
 
-// Scratch vectors of the classical RK4 step, allocated once per run.
-struct Rk4Workspace {
-  Eigen::VectorXd k1, k2, k3, k4, stage;
-  explicit Rk4Workspace(Eigen::Index n) : k1(n), k2(n), k3(n), k4(n), stage(n) {}
-};
-
-void rk4_step(const heli::Helicopter& plant, const Eigen::VectorXd& u, double dt, Rk4Workspace& w,
-              Eigen::VectorXd& x) {
-  plant.f(x, u, w.k1);
-  w.stage = x + (0.5 * dt) * w.k1;
-  plant.f(w.stage, u, w.k2);
-  w.stage = x + (0.5 * dt) * w.k2;
-  plant.f(w.stage, u, w.k3);
-  w.stage = x + dt * w.k3;
-  plant.f(w.stage, u, w.k4);
-  x += (dt / 6.0) * (w.k1 + 2.0 * w.k2 + 2.0 * w.k3 + w.k4);
-}
-
-void validate(const SimulationSettings& settings, const Eigen::VectorXd& x0) {
-  if (!(settings.dt > 0.0) || !std::isfinite(settings.dt)) throw Error("simulate: dt must be positive and finite");
-  if (settings.controller_period_steps < 1) throw Error("simulate: controller_period_steps must be at least 1");
-  if (settings.log_every < 1) throw Error("simulate: log_every must be at least 1");
-  if (!(settings.duration >= settings.controller_period()) || !(settings.duration <= SimulationSettings::kMaxDuration))
-    throw Error("simulate: duration must be at least one controller period and at most " +
-                std::to_string(static_cast<int>(SimulationSettings::kMaxDuration)) + " s (one simulated day)");
-  if (settings.duration / settings.controller_period() > 1e10)
-    throw Error("simulate: the controller period is too short for the duration (more than 1e10 samples)");
-  if (x0.size() != kStateDim)
-    throw Error("simulate: x0 has " + std::to_string(x0.size()) + " entries, the helicopter has " +
-                std::to_string(kStateDim));
-}
-
 // Reserves the log for the whole run, so that the step loop allocates nothing; bounded up front, so
 // that a flight too long to log fails now with advice instead of with bad_alloc later.
 void reserve_log(const SimulationSettings& settings, std::int64_t samples, RunLog& log) {
@@ -194,6 +163,17 @@ void append_row(double t, const Eigen::Vector3d& command_position, const Eigen::
 
 }  // namespace
 
+void SimulationSettings::validate() const {
+  if (!(dt > 0.0) || !std::isfinite(dt)) throw Error("simulate: dt must be positive and finite");
+  if (controller_period_steps < 1) throw Error("simulate: controller_period_steps must be at least 1");
+  if (log_every < 1) throw Error("simulate: log_every must be at least 1");
+  if (!(duration >= controller_period()) || !(duration <= kMaxDuration))
+    throw Error("simulate: duration must be at least one controller period and at most " +
+                std::to_string(static_cast<int>(kMaxDuration)) + " s (one simulated day)");
+  if (duration / controller_period() > 1e10)
+    throw Error("simulate: the controller period is too short for the duration (more than 1e10 samples)");
+}
+
 SimulationSettings SimulationSettings::ideal() {
   SimulationSettings settings;
   settings.parameter_uncertainty = false;
@@ -214,7 +194,10 @@ RunResult simulate(ControlLaw& law, const ReferenceTrajectory& reference, const 
                    const SimulationSettings& settings, const heli::Parameters& nominal,
                    const heli::ModelOptions& options, const std::function<void(double t)>& progress) {
   using namespace heli;
-  validate(settings, x0);
+  settings.validate();
+  if (x0.size() != kStateDim)
+    throw Error("simulate: x0 has " + std::to_string(x0.size()) + " entries, the helicopter has " +
+                std::to_string(kStateDim));
   const double period = settings.controller_period();
   const auto samples = static_cast<std::int64_t>(std::llround(settings.duration / period));
 

@@ -42,6 +42,8 @@ struct SimulationSettings {
   std::uint64_t seed = 1;
 
   double controller_period() const { return dt * controller_period_steps; }
+  // Throws thetad::Error naming the first setting out of range.
+  void validate() const;
 
   // One simulated day: longer flights are a mistake in a file, not a study.
   static constexpr double kMaxDuration = 86400.0;
