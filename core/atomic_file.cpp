@@ -8,6 +8,7 @@
 #include <csignal>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 #include <mutex>
 
 #include "core/error.hpp"
@@ -16,50 +17,67 @@ namespace thetad {
 
 namespace {
 
-// The signal handler may only read memory and call async-signal-safe functions (unlink, signal,
-// raise), so the open partial files are kept in a fixed table of C strings with atomic flags.
+// The signal handler may only read memory and call async-signal-safe functions (unlink,
+// sigaction, raise), so the open partial files are kept in a fixed table of C strings, each slot
+// free, being claimed (its name being written) or ready (the handler may unlink its name).
 constexpr int kSlots = 256;
 constexpr std::size_t kPathBytes = 4096;
+enum SlotState : int { kFree, kClaiming, kReady };
 struct Slot {
-  std::atomic<bool> used{false};
+  std::atomic<int> state{kFree};
   char path[kPathBytes];
 };
 std::array<Slot, kSlots> slots;
 std::atomic<unsigned long> next_number{0};
 
+constexpr int kSignals[] = {SIGINT, SIGTERM, SIGHUP};
+struct sigaction previous_actions[std::size(kSignals)];
+
 extern "C" void remove_partial_files(int signal_number) {
   for (Slot& slot : slots) {
-    if (slot.used.load()) unlink(slot.path);
+    if (slot.state.load() == kReady) unlink(slot.path);
   }
-  std::signal(signal_number, SIG_DFL);
-  std::raise(signal_number);
+  // Then whatever handled the signal before (a host program's, e.g. Python's KeyboardInterrupt),
+  // or the default action, which ends the process as the signal would have.
+  for (std::size_t i = 0; i < std::size(kSignals); ++i) {
+    if (kSignals[i] != signal_number) continue;
+    const struct sigaction& previous = previous_actions[i];
+    if (previous.sa_handler == SIG_DFL) {
+      sigaction(signal_number, &previous, nullptr);
+      raise(signal_number);
+    } else if ((previous.sa_flags & SA_SIGINFO) == 0 && previous.sa_handler != SIG_IGN) {
+      previous.sa_handler(signal_number);
+    }
+  }
 }
 
 void install_handlers() {
   static std::once_flag once;
   std::call_once(once, [] {
-    for (const int signal_number : {SIGINT, SIGTERM, SIGHUP}) {
+    for (std::size_t i = 0; i < std::size(kSignals); ++i) {
+      sigaction(kSignals[i], nullptr, &previous_actions[i]);
+      // A signal someone chose to ignore stays ignored (nohup); one handled with siginfo is left to
+      // its handler, which this one could not call correctly.
+      if (previous_actions[i].sa_handler == SIG_IGN || (previous_actions[i].sa_flags & SA_SIGINFO) != 0) continue;
       struct sigaction action {};
       action.sa_handler = remove_partial_files;
       sigemptyset(&action.sa_mask);
-      struct sigaction previous {};
-      sigaction(signal_number, nullptr, &previous);
-      // A signal someone chose to ignore stays ignored (nohup).
-      if (previous.sa_handler != SIG_IGN) sigaction(signal_number, &action, nullptr);
+      sigaction(kSignals[i], &action, nullptr);
     }
   });
 }
 
+// A slot holding `path` for the signal handler, or -1 when none is free (or the path is too long):
+// then the file is still removed by its PartialFile, only not on a signal.
 int claim_slot(const std::filesystem::path& path) {
   const std::string text = path.string();
   if (text.size() >= kPathBytes) return -1;
   for (int i = 0; i < kSlots; ++i) {
     Slot& slot = slots[static_cast<std::size_t>(i)];
-    bool expected = false;
-    if (slot.used.load() || !slot.used.compare_exchange_strong(expected, true)) continue;
-    // Marked used before its path is complete: the handler would unlink a prefix at worst, and
-    // the name is written before any file exists under it.
+    int expected = kFree;
+    if (!slot.state.compare_exchange_strong(expected, kClaiming)) continue;
     std::memcpy(slot.path, text.c_str(), text.size() + 1);
+    slot.state.store(kReady);  // published only once the name is whole
     return i;
   }
   return -1;
@@ -85,7 +103,7 @@ PartialFile::~PartialFile() {
     std::error_code ignored;
     std::filesystem::remove(partial_, ignored);
   }
-  if (slot_ >= 0) slots[static_cast<std::size_t>(slot_)].used.store(false);
+  if (slot_ >= 0) slots[static_cast<std::size_t>(slot_)].state.store(kFree);
 }
 
 void PartialFile::commit() {

@@ -8,8 +8,8 @@ namespace thetad {
 // A file being written under a temporary name unique to this process and this write
 // (".NAME.<pid>.<n>.partial" beside the final name), so that two thetad processes writing into one
 // folder never share one. It is removed when the object dies without commit(), and on SIGINT,
-// SIGTERM or SIGHUP (the handler removes every open partial file, then lets the signal end the
-// process as it would have).
+// SIGTERM or SIGHUP: the handler removes every open partial file, then passes the signal on to
+// what handled it before (the default action ends the process as the signal would have).
 class PartialFile {
  public:
   explicit PartialFile(const std::filesystem::path& final_path);

@@ -60,6 +60,8 @@ decltype(auto) with_settings_source(const std::string& source, Read&& read) {
   try {
     return std::forward<Read>(read)();
   } catch (const SettingsError& error) {
+    // An error that already names its file (a file read inside `read`) keeps it.
+    if (!error.source().empty()) throw;
     throw error.in_source(source);
   }
 }

@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "experiment/result_json.hpp"
+#include "experiment/sha256.hpp"
 
 namespace thetad {
 
@@ -66,7 +67,8 @@ nlohmann::ordered_json comparison_json(const Flight& flight, const std::vector<R
     j["runs"].push_back({{"label", runs[i].spec.label},
                          {"controller", runs[i].spec.controller},
                          {"status", runs[i].completed() ? "completed" : "diverged"},
-                         {"json", files[i].json.filename().string()}});
+                         {"json", files[i].json.filename().string()},
+                         {"json_sha256", sha256_of_file(files[i].json)}});
   }
   return j;
 }

@@ -17,7 +17,8 @@ namespace thetad {
 std::string comparison_table(const std::vector<RunResult>& runs);
 
 // comparison.json: the flight (scenario, seed, disturbances, provenance) and, per run in order,
-// its label, controller and result file (the result file names its log).
+// its label, controller and result file with the file's SHA-256 (the result file names its log
+// the same way), so that a run written into the folder later is not taken for one of the compare.
 nlohmann::ordered_json comparison_json(const Flight& flight, const std::vector<RunResult>& runs,
                                        const std::vector<RunFiles>& files);
 

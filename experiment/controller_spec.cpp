@@ -1,14 +1,13 @@
 #include "experiment/controller_spec.hpp"
 
 #include <algorithm>
-#include <cerrno>
-#include <cstring>
-#include <fstream>
+#include <cctype>
 #include <sstream>
 
 #include "controllers/registry.hpp"
 #include "core/error.hpp"
 #include "core/settings.hpp"
+#include "experiment/text_file.hpp"
 
 namespace thetad {
 
@@ -18,6 +17,11 @@ std::string known_controllers() {
   std::string known;
   for (const auto& name : ControllerRegistry::instance().names()) known += (known.empty() ? "" : ", ") + name;
   return known;
+}
+
+std::string lower_case(std::string text) {
+  for (char& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return text;
 }
 
 bool registered(const std::string& name) {
@@ -33,13 +37,10 @@ YAML::Node block_of(const YAML::Node& file, const std::string& name) {
 }  // namespace
 
 YAML::Node load_settings_file(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw Error("cannot read settings file " + file.string() + ": " + std::strerror(errno));
-  std::ostringstream text;
-  text << in.rdbuf();
+  const std::string text = read_text_file(file);
   YAML::Node root;
   try {
-    root = YAML::Load(text.str());
+    root = YAML::Load(text);
   } catch (const YAML::Exception& error) {
     std::ostringstream message;
     message << file.string() << ":" << error.mark.line + 1 << ":" << error.mark.column + 1
@@ -68,14 +69,19 @@ void check_label(const std::string& label) {
   if (!valid)
     throw Error("label '" + label + "': a label names files, so it must be 1-64 characters from A-Z a-z 0-9 . _ + - " +
                 "and not start with '.' or '-'");
+  if (lower_case(label) == "comparison")
+    throw Error("label '" + label + "': the name of a compare's own file (comparison.json); choose another");
 }
 
 void check_labels(const std::vector<ControllerSpec>& specs) {
   for (auto it = specs.begin(); it != specs.end(); ++it) {
     check_label(it->label);
-    const auto same = [&](const ControllerSpec& other) { return other.label == it->label; };
-    if (std::find_if(specs.begin(), it, same) != it)
-      throw Error("label '" + it->label + "' is used twice: give each controller its own (LABEL=NAME)");
+    // Labels name files: two that differ only in case are one file on some file systems.
+    const auto same = [&](const ControllerSpec& other) { return lower_case(other.label) == lower_case(it->label); };
+    if (const auto first = std::find_if(specs.begin(), it, same); first != it)
+      throw Error("label '" + it->label + "' is used twice" +
+                  (first->label == it->label ? std::string() : " (as '" + first->label + "': labels name files)") +
+                  ": give each controller its own (LABEL=NAME)");
   }
 }
 

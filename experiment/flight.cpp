@@ -8,24 +8,31 @@
 #include "experiment/build_info.hpp"
 #include "experiment/scenario_files.hpp"
 #include "experiment/sha256.hpp"
+#include "experiment/text_file.hpp"
 
 namespace thetad {
 
 namespace {
 
-Scenario load(const std::string& file_or_name) { return load_scenario(find_scenario(file_or_name)); }
+// The scenario and the SHA-256 of the very bytes it was parsed from.
+Scenario load(const std::string& file_or_name, std::string& sha256) {
+  const std::filesystem::path file = find_scenario(file_or_name);
+  const std::string text = read_text_file(file);
+  sha256 = sha256_hex(text);
+  return parse_scenario(text, file.string());
+}
 
 }  // namespace
 
 Flight::Flight(const std::string& scenario, const RunControls& controls)
-    : scenario_(load(scenario)),
+    : scenario_(load(scenario, provenance_.scenario_sha256)),
       settings_(scenario_.simulation_settings()),
       model_(heli::Parameters::nominal(), scenario_.model_options) {
   apply(controls, settings_);
   provenance_.build = build_info();
   provenance_.scenario_name = scenario_.name;
-  provenance_.scenario_file = scenario_.source;
-  provenance_.scenario_sha256 = sha256_of_file(scenario_.source);
+  // Absolute, so that a replay from another folder finds it.
+  provenance_.scenario_file = std::filesystem::absolute(scenario_.source).lexically_normal().string();
   provenance_.model_preset = scenario_.model_preset;
   provenance_.model_options = scenario_.model_options.to_string();
   provenance_.seed = settings_.seed;

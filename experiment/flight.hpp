@@ -51,10 +51,10 @@ class Flight {
   RunResult fly(PreparedController& prepared, Progress* progress = nullptr, const std::string& heading = {}) const;
 
  private:
+  Provenance provenance_;  // first: the scenario's loading fills in its SHA-256
   Scenario scenario_;
   sim::SimulationSettings settings_;
   heli::Helicopter model_;
-  Provenance provenance_;
 };
 
 }  // namespace thetad

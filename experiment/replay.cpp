@@ -1,12 +1,10 @@
 #include "experiment/replay.hpp"
 
-#include <fstream>
-#include <sstream>
-
 #include "core/error.hpp"
 #include "experiment/flight.hpp"
 #include "experiment/result_json.hpp"
 #include "experiment/sha256.hpp"
+#include "experiment/text_file.hpp"
 
 namespace thetad {
 
@@ -40,16 +38,7 @@ RunControls controls_of(const Json& settings, std::uint64_t seed) {
 }  // namespace
 
 Replay replay(const std::filesystem::path& result_file, Progress* progress) {
-  std::ifstream in(result_file, std::ios::binary);
-  if (!in) throw Error("cannot read " + result_file.string());
-  std::ostringstream text;
-  text << in.rdbuf();
-  Json recorded;
-  try {
-    recorded = Json::parse(text.str());
-  } catch (const Json::parse_error& error) {
-    throw Error(result_file.string() + ": not valid JSON: " + error.what());
-  }
+  const Json recorded = read_json_file(result_file);
   if (!recorded.is_object() || recorded.value("format", "") != kRunFormat)
     throw Error(result_file.string() + ": not a thetad run result (format " + std::string(kRunFormat) + ")");
   try {

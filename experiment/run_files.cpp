@@ -15,6 +15,7 @@
 #include "core/error.hpp"
 #include "experiment/result_json.hpp"
 #include "experiment/sha256.hpp"
+#include "experiment/text_file.hpp"
 
 namespace thetad {
 
@@ -94,18 +95,6 @@ class FolderLock {
   int descriptor_;
 };
 
-Json read_json(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw Error("cannot read " + file.string() + ": " + std::strerror(errno));
-  std::ostringstream text;
-  text << in.rdbuf();
-  try {
-    return Json::parse(text.str());
-  } catch (const Json::parse_error& error) {
-    throw Error(file.string() + ": not valid JSON: " + error.what());
-  }
-}
-
 }  // namespace
 
 std::vector<sim::LogColumn> log_columns(bool timing) {
@@ -173,7 +162,7 @@ RunFiles write_run_files(const RunResult& result, const fs::path& folder) {
 StoredRun read_run_files(const fs::path& json_file) {
   StoredRun run;
   run.json_file = json_file;
-  run.result = read_json(json_file);
+  run.result = read_json_file(json_file);
   const std::string where = json_file.string() + ": ";
   if (!run.result.is_object() || run.result.value("format", "") != kRunFormat)
     throw Error(where + "not a thetad run result (format '" + std::string(kRunFormat) +
@@ -199,9 +188,15 @@ std::vector<StoredRun> read_result_folder(const fs::path& folder) {
   std::vector<StoredRun> runs;
   const fs::path comparison = folder / "comparison.json";
   if (fs::exists(comparison)) {
-    const Json j = read_json(comparison);
+    const Json j = read_json_file(comparison);
     try {
-      for (const auto& run : j.at("runs")) runs.push_back(read_run_files(folder / run.at("json").get<std::string>()));
+      for (const auto& run : j.at("runs")) {
+        const fs::path file = folder / run.at("json").get<std::string>();
+        if (fs::exists(file) && sha256_of_file(file) != run.at("json_sha256").get<std::string>())
+          throw Error(comparison.string() + ": " + file.string() +
+                      " has been replaced since the compare (its SHA-256 differs from the recorded one)");
+        runs.push_back(read_run_files(file));
+      }
     } catch (const Json::exception& error) {
       throw Error(comparison.string() + ": not a thetad comparison: " + error.what());
     }
@@ -210,11 +205,22 @@ std::vector<StoredRun> read_result_folder(const fs::path& folder) {
   std::vector<fs::path> files;
   for (const auto& entry : fs::directory_iterator(folder)) {
     if (entry.path().extension() != ".json" || entry.path().filename().string().front() == '.') continue;
-    const Json j = read_json(entry.path());
+    const Json j = read_json_file(entry.path());
     if (j.is_object() && j.value("format", "") == kRunFormat) files.push_back(entry.path());
   }
   std::sort(files.begin(), files.end());
   for (const auto& file : files) runs.push_back(read_run_files(file));
+  // Without a comparison.json the runs are drawn together only if they flew the same flight.
+  const auto flight_of = [](const StoredRun& run) {
+    const Json& p = run.result.at("provenance");
+    return p.at("scenario").at("sha256").get<std::string>() + " seed " + std::to_string(p.at("seed").get<std::uint64_t>());
+  };
+  for (const StoredRun& run : runs) {
+    if (flight_of(run) != flight_of(runs.front()))
+      throw Error(folder.string() + ": " + run.json_file.filename().string() + " and " +
+                  runs.front().json_file.filename().string() +
+                  " flew different scenarios or seeds (and no comparison.json says they belong together)");
+  }
   if (runs.empty())
     throw Error(folder.string() + ": no runs (expected the comparison.json of thetad compare or the result files of "
                                   "thetad run)");

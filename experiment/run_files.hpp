@@ -44,8 +44,9 @@ struct StoredRun {
 // SHA-256 and the header of log_columns(). Throws thetad::Error naming the file and the reason.
 StoredRun read_run_files(const std::filesystem::path& json_file);
 
-// Every run in `folder`: through its comparison.json (its order) when there is one, else every
-// <label>.json of format kRunFormat in name order. Throws thetad::Error when there is none.
+// Every run in `folder`: through its comparison.json (its order; each result must be the file it
+// recorded) when there is one, else every <label>.json of format kRunFormat in name order, which
+// must all have flown one scenario file with one seed. Throws thetad::Error when there is none.
 std::vector<StoredRun> read_result_folder(const std::filesystem::path& folder);
 
 }  // namespace thetad

@@ -109,12 +109,13 @@ void pass(Controller& controller, const RecordedSamples& samples, const Plan& pl
 
 }  // namespace
 
-RecordedSamples record_samples(const Flight& flight, PreparedController& prepared) {
+RecordedSamples record_samples(const Flight& flight, PreparedController& prepared, Progress* progress) {
   RecordedSamples samples;
   samples.recorded_with = prepared.spec.label;
   PreparedController recorder{prepared.spec, std::make_unique<SampleRecorder>(prepared.controller->clone(), samples),
                               prepared.settings};
-  const RunResult run = flight.fly(recorder);
+  const RunResult run = flight.fly(recorder, progress, "recording with " + prepared.spec.label + ":");
+  if (!run.completed()) samples.diverged = run.summary.reason;
   if (samples.size() == 0)
     throw Error("bench: the recording flight with " + prepared.spec.label + " kept no sample (" + run.summary.reason + ")");
   return samples;

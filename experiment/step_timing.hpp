@@ -23,12 +23,13 @@ struct RecordedSamples {
   std::vector<Eigen::VectorXd> measured;
   std::vector<Reference> reference;
   std::string recorded_with;  // the label of the controller that flew the recording
+  std::string diverged;       // why the recording flight diverged (its samples up to then are kept); "" if it completed
   std::size_t size() const { return time.size(); }
 };
 
-// Flies `prepared` through `flight` and keeps every sample. Throws thetad::Error when the flight
-// diverged before the first sample.
-RecordedSamples record_samples(const Flight& flight, PreparedController& prepared);
+// Flies `prepared` through `flight` (progress on `progress`) and keeps every sample. Throws
+// thetad::Error when the flight diverged before the first sample.
+RecordedSamples record_samples(const Flight& flight, PreparedController& prepared, Progress* progress = nullptr);
 
 // A controller is timed at 1 kHz as it flies, on consecutive samples: its warm starts (the last
 // P, the last input) come from the sample before, as in flight. The timed samples are `segments`

@@ -183,8 +183,20 @@ void read_simulation(const YAML::Node& root, Scenario& scenario) {
   if (simulation.has("log_every")) scenario.log_every = simulation.integer("log_every", 1, 1);
   scenario.summary_only = optional_boolean(simulation, "summary_only");
   scenario.timing = optional_boolean(simulation, "timing");
-  if (simulation.has("controller_period_steps"))
+  if (simulation.has("controller_period_steps")) {
     scenario.controller_period_steps = simulation.integer("controller_period_steps", 1, 1);
+  } else if (scenario.dt) {
+    // The controller keeps sampling at 1 kHz with zero-order hold: a plant step must divide 1 ms
+    // (or the file says the controller period in steps).
+    const double period = sim::SimulationSettings{}.controller_period(), steps = std::round(period / *scenario.dt);
+    if (steps < 1.0 || std::abs(steps * *scenario.dt - period) > 1e-9 * period) {
+      std::ostringstream reason;
+      reason << *scenario.dt << " s does not divide the controller period " << period
+             << " s (the controller samples at 1 kHz with zero-order hold; or give controller_period_steps)";
+      throw simulation.error("dt", reason.str());
+    }
+    scenario.controller_period_steps = static_cast<int>(steps);
+  }
   if (simulation.has("seed")) scenario.seed = static_cast<std::uint64_t>(simulation.integer("seed", 1, 0));
 
   const Settings disturbances(child(node, "disturbances"), "simulation.disturbances");

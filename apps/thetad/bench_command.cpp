@@ -53,9 +53,7 @@ int run_bench(const BenchArguments& arguments) {
   if (!options.out.empty() && options.out.has_parent_path()) prepare_output_folder(options.out.parent_path());
 
   Progress progress(Progress::mode_for_stderr(options.quiet));
-  progress.start("recording with " + specs.front().label + ":", flight.settings().duration);
-  const RecordedSamples samples = record_samples(flight, controllers.front());
-  progress.finish(std::to_string(samples.size()) + " samples recorded");
+  const RecordedSamples samples = record_samples(flight, controllers.front(), &progress);
 
   const StepTimingReport report =
       time_steps(controllers, samples, flight.scenario().initial_state, flight.model().input_dim(), arguments.timing);
@@ -67,11 +65,14 @@ int run_bench(const BenchArguments& arguments) {
     Provenance provenance = flight.provenance();
     stamp_host_and_time(provenance);
     j["recorded_with"] = samples.recorded_with;
+    j["recording_diverged"] = samples.diverged;
     j["provenance"] = to_json(provenance);
     write_file_atomically(options.out, j.dump(2) + "\n");
     std::printf("Wrote %s.\n", options.out.c_str());
   }
-  return 0;
+  if (samples.diverged.empty()) return kExitCompleted;
+  std::printf("The recording flight diverged (%s): the states are those up to then.\n", samples.diverged.c_str());
+  return kExitDiverged;
 }
 
 }  // namespace thetad::app

@@ -10,6 +10,7 @@
 #include "experiment/replay.hpp"
 #include "experiment/result_json.hpp"
 #include "experiment/run_files.hpp"
+#include "experiment/text_file.hpp"
 
 namespace thetad::app {
 
@@ -50,7 +51,14 @@ void print_summary(const RunResult& result, const Flight& flight, const RunFiles
 
 int run_replay(const RunArguments& arguments) {
   Progress progress(Progress::mode_for_stderr(arguments.flight.quiet));
-  if (!arguments.flight.out.empty()) prepare_output_folder(arguments.flight.out);
+  if (!arguments.flight.out.empty()) {
+    const std::string label = read_json_file(arguments.replay).value("label", "");
+    std::error_code error;
+    if (std::filesystem::equivalent(arguments.flight.out / (label + ".json"), arguments.replay, error))
+      throw Error("--out " + arguments.flight.out.string() + " would overwrite " + arguments.replay.string() +
+                  ", the result being replayed: write the replay elsewhere");
+    prepare_output_folder(arguments.flight.out);
+  }
   const Replay replayed = replay(arguments.replay, &progress);
   if (!arguments.flight.out.empty()) {
     const RunFiles files = write_run_files(replayed.result, arguments.flight.out);

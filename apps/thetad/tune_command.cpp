@@ -1,5 +1,6 @@
 #include "apps/thetad/tune_command.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -278,7 +279,9 @@ int run_tune(const TuneArguments& a) {
   }
   std::printf("wrote=%s,%s,%s\n", settings_file.c_str(), (a.flight.out / "sigma-curves.csv").c_str(),
               (a.flight.out / "tuning.json").c_str());
-  return 0;
+  const bool diverged = std::any_of(validations.begin(), validations.end(),
+                                    [](const Validation& v) { return v.summary.status != sim::RunStatus::completed; });
+  return diverged ? kExitDiverged : kExitCompleted;
 }
 
 }  // namespace thetad::app

@@ -142,8 +142,25 @@ TEST_F(Plot, AnEditedLogIsRejected) {
   expect_rejected("example-pid.csv has another SHA-256 than the result records: the two files come from different runs");
 }
 
-// A log whose result vouches for it (another thetad version's pair) but whose columns differ.
+// A result file changed after the compare is not the one its comparison.json recorded.
+TEST_F(Plot, AReplacedResultIsRejected) {
+  replace_once(dir_ / "runs" / "lqr.json", "\"label\": \"lqr\"", "\"label\": \"lqr\" ");
+  expect_rejected("lqr.json has been replaced since the compare");
+}
+
+// Two results of different flights in one folder, without a comparison.json to join them.
+TEST_F(Plot, RunsOfDifferentFlightsAreNotDrawnTogether) {
+  fs::remove(dir_ / "runs" / "comparison.json");
+  const Output other = thetad(dir_, "run --scenario " + (root_ / "climb.yaml").string() +
+                                        " --controller other=lqr --seed 2 --out " + (dir_ / "runs").string());
+  ASSERT_EQ(other.status, 0) << other.err;
+  expect_rejected("flew different scenarios or seeds");
+}
+
+// A log whose result vouches for it (another thetad version's pair) but whose columns differ;
+// read without the comparison (which would refuse the edited result first).
 TEST_F(Plot, ColumnWithAnotherUnitIsRejected) {
+  fs::remove(dir_ / "runs" / "comparison.json");
   const std::string old_digest = thetad::sha256_of_file(dir_ / "runs" / "lqr.csv");
   replace_once(dir_ / "runs" / "lqr.csv", "phi_rad,", "phi_deg,");
   replace_once(dir_ / "runs" / "lqr.json", old_digest, thetad::sha256_of_file(dir_ / "runs" / "lqr.csv"));
@@ -151,6 +168,7 @@ TEST_F(Plot, ColumnWithAnotherUnitIsRejected) {
 }
 
 TEST_F(Plot, MissingColumnIsRejected) {
+  fs::remove(dir_ / "runs" / "comparison.json");
   const std::string old_digest = thetad::sha256_of_file(dir_ / "runs" / "example-pid.csv");
   replace_once(dir_ / "runs" / "example-pid.csv", ",compute_ns\n", "\n");
   replace_once(dir_ / "runs" / "example-pid.json", old_digest, thetad::sha256_of_file(dir_ / "runs" / "example-pid.csv"));
@@ -158,6 +176,7 @@ TEST_F(Plot, MissingColumnIsRejected) {
 }
 
 TEST_F(Plot, MalformedSummaryJsonIsRejected) {
+  fs::remove(dir_ / "runs" / "comparison.json");
   write(dir_ / "runs" / "lqr.json", "{\"controller\": \"lqr\",");
   expect_rejected("lqr.json: not valid JSON");
 }

@@ -42,6 +42,10 @@ class RunOutputs : public ::testing::Test {
   Output thetad(const std::string& arguments, const std::string& environment = "") const {
     return thetad::testing::run_thetad(dir_, arguments, environment);
   }
+  // thetad run from the folder `cwd` (relative paths in `arguments` are relative to it).
+  Output thetad_in(const fs::path& cwd, const std::string& arguments) const {
+    return thetad::testing::run_thetad(dir_, arguments, "", cwd);
+  }
   // thetad started in the background; its pid.
   pid_t start(const std::vector<std::string>& arguments) const {
     const pid_t child = fork();
@@ -143,9 +147,15 @@ TEST_F(RunOutputs, SummaryOnlyWritesACompleteResultAndNoLog) {
 TEST_F(RunOutputs, AReplayFliesTheRecordedRunAgainAndSaysWhetherItAgrees) {
   ASSERT_EQ(thetad("run --scenario " + path("hover.yaml") + " --controller paper=theta-d --seed 4 --log-every 3 --out " +
                    path("out")).status, 0);
-  Output output = thetad("run --replay " + path("out/paper.json"));
+  // From another folder (the result records the scenario's absolute path), into a third one.
+  fs::create_directories(dir_ / "elsewhere");
+  Output output = thetad_in(dir_ / "elsewhere", "run --replay ../out/paper.json --out replayed");
   EXPECT_EQ(output.status, 0) << output.err;
   EXPECT_THAT(output.out, HasSubstr("agrees with the recorded run"));
+  EXPECT_TRUE(fs::exists(dir_ / "elsewhere" / "replayed" / "paper.json"));
+  output = thetad("run --replay " + path("out/paper.json") + " --out " + path("out"));
+  EXPECT_EQ(output.status, 1);
+  EXPECT_THAT(output.err, HasSubstr("would overwrite"));
 
   std::string result = thetad::testing::read_text(dir_ / "out" / "paper.json");
   result.insert(result.find("\"J\": ") + 5, "9");

@@ -62,7 +62,7 @@ TEST_F(ControllerSpecs, BadSpecsAreErrorsNamingWhatIsWrong) {
   EXPECT_THAT(error_message([&] { parse_controller_spec("sdre:" + path("tuned.yaml")); }),
               HasSubstr("has no block for 'sdre'"));
   EXPECT_THAT(error_message([&] { parse_controller_spec("x=theta-d:" + path("missing.yaml")); }),
-              HasSubstr("cannot read settings file"));
+              HasSubstr("cannot read " + path("missing.yaml") + ": No such file or directory"));
   for (const char* label : {"../up", ".hidden", "-flag", "a b", "tab\t", "x/y"})
     EXPECT_THAT(error_message([&] { parse_controller_spec(std::string(label) + "=sdre"); }), HasSubstr("label '")) << label;
   EXPECT_THAT(error_message([] { parse_controller_spec(std::string(65, 'a') + "=sdre"); }), HasSubstr("1-64 characters"));
@@ -72,6 +72,9 @@ TEST_F(ControllerSpecs, ALabelMayNotRepeat) {
   const std::vector<ControllerSpec> specs{parse_controller_spec("theta-d"), parse_controller_spec("theta-d")};
   EXPECT_THAT(error_message([&] { check_labels(specs); }), HasSubstr("label 'theta-d' is used twice"));
   check_labels({parse_controller_spec("theta-d"), parse_controller_spec("tuned=theta-d:" + path("tuned.yaml"))});
+  EXPECT_THAT(error_message([] { check_labels({parse_controller_spec("A=sdre"), parse_controller_spec("a=lqr")}); }),
+              HasSubstr("label 'a' is used twice (as 'A': labels name files)"));
+  EXPECT_THAT(error_message([] { parse_controller_spec("Comparison=sdre"); }), HasSubstr("comparison.json"));
 }
 
 TEST_F(ControllerSpecs, AYamlListGivesLabelledSpecsWithInlineOrFiledSettings) {

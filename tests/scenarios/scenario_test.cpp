@@ -126,6 +126,12 @@ TEST(Scenario, RunControlsInTheSimulationBlock) {
   EXPECT_FALSE(settings.keep_log);
   EXPECT_FALSE(settings.measure_compute_time);
   EXPECT_EQ(scenario.model_preset, "resolved");
+  EXPECT_THAT(error_of(kHeader + kTakeoff + kHover + "simulation:\n  dt: 0.0003\n"),
+              HasSubstr("field 'simulation.dt': 0.0003 s does not divide the controller period 0.001 s"));
+  const sim::SimulationSettings half =
+      parse_scenario(kHeader + kTakeoff + kHover + "simulation:\n  dt: 0.0005\n", "test.yaml").simulation_settings();
+  EXPECT_EQ(half.controller_period_steps, 2);
+  EXPECT_EQ(half.controller_period(), 1e-3);
   EXPECT_THAT(error_of(kHeader + kTakeoff + kHover + "simulation:\n  log_every: 0\n"),
               HasSubstr("field 'simulation.log_every': expected an integer in [1, "));
   EXPECT_THAT(error_of(kHeader + kTakeoff + kHover + "simulation:\n  duration: 1e6\n"),
