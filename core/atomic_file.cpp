@@ -106,6 +106,14 @@ PartialFile::~PartialFile() {
   if (slot_ >= 0) slots[static_cast<std::size_t>(slot_)].state.store(kFree);
 }
 
+void PartialFile::write(const std::function<void(std::ostream&)>& write) {
+  std::ofstream out(partial_, std::ios::binary | std::ios::trunc);
+  if (!out) throw Error("cannot write " + final_.string() + ": " + std::strerror(errno));
+  write(out);
+  out.close();
+  if (!out) throw Error("writing " + final_.string() + " failed (disk full or file too large?)");
+}
+
 void PartialFile::commit() {
   std::error_code error;
   std::filesystem::rename(partial_, final_, error);
@@ -121,13 +129,7 @@ void write_file_atomically(const std::filesystem::path& path, const std::string&
     if (ec) throw Error("cannot create directory " + path.parent_path().string() + ": " + ec.message());
   }
   PartialFile file(path);
-  {
-    std::ofstream out(file.path(), std::ios::binary | std::ios::trunc);
-    if (!out) throw Error("cannot write " + path.string() + ": " + std::strerror(errno));
-    out.write(content.data(), static_cast<std::streamsize>(content.size()));
-    out.close();
-    if (!out) throw Error("writing " + path.string() + " failed (disk full or file too large?)");
-  }
+  file.write([&](std::ostream& out) { out.write(content.data(), static_cast<std::streamsize>(content.size())); });
   file.commit();
 }
 

@@ -1,6 +1,8 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
+#include <ostream>
 #include <string>
 
 namespace thetad {
@@ -19,6 +21,10 @@ class PartialFile {
 
   const std::filesystem::path& path() const { return partial_; }
   const std::filesystem::path& final_path() const { return final_; }
+  // Writes the partial file's content: `write` fills the stream. Throws thetad::Error naming the
+  // final file when it cannot be opened or the writing fails (a full disk, a file size limit).
+  void write(const std::function<void(std::ostream&)>& write);
+
   // Renames the partial file onto the final name (atomic on one file system). Throws thetad::Error
   // naming both on failure (the partial file is then removed).
   void commit();

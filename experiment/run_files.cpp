@@ -35,7 +35,7 @@ std::string header_line(const std::vector<sim::LogColumn>& columns) {
 
 // Writes the log as CSV into `out` and returns the SHA-256 of what it wrote. Shortest round-trip
 // text: exact, and the same bytes for the same double on every run.
-std::string write_csv(const sim::RunLog& log, bool timing, std::ofstream& out) {
+std::string write_csv(const sim::RunLog& log, bool timing, std::ostream& out) {
   Sha256 digest;
   std::string chunk = header_line(log_columns(timing)) + "\n";
   const std::size_t schema = sim::log_schema().size(), written = log_columns(timing).size();
@@ -125,20 +125,12 @@ RunFiles write_run_files(const RunResult& result, const fs::path& folder) {
   if (result.summary.settings.keep_log) {
     files.csv = folder / (label + ".csv");
     csv.emplace(files.csv);
-    std::ofstream out(csv->path(), std::ios::binary | std::ios::trunc);
-    if (!out) throw Error("cannot write " + files.csv.string() + ": " + std::strerror(errno));
-    log = {files.csv.filename().string(), write_csv(result.log, timing, out), result.log.rows()};
-    out.close();
-    if (!out) throw Error("writing " + files.csv.string() + " failed (disk full or file too large?)");
+    csv->write([&](std::ostream& out) {
+      log = {files.csv.filename().string(), write_csv(result.log, timing, out), result.log.rows()};
+    });
   }
   PartialFile json(files.json);
-  {
-    std::ofstream out(json.path(), std::ios::binary | std::ios::trunc);
-    if (!out) throw Error("cannot write " + files.json.string() + ": " + std::strerror(errno));
-    out << result_json(result, csv ? &log : nullptr).dump(2) << '\n';
-    out.close();
-    if (!out) throw Error("writing " + files.json.string() + " failed (disk full or file too large?)");
-  }
+  json.write([&](std::ostream& out) { out << result_json(result, csv ? &log : nullptr).dump(2) << '\n'; });
   // One commit per folder at a time: two thetad processes writing one label into one folder leave
   // the pair of one of them, never the log of one beside the result of the other.
   const FolderLock lock(folder);

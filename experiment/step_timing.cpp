@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "core/error.hpp"
+#include "core/sim/run_metrics.hpp"
 
 namespace thetad {
 
@@ -37,12 +38,6 @@ class SampleRecorder final : public Controller {
   std::unique_ptr<Controller> inner_;
   RecordedSamples* samples_;
 };
-
-// Nearest rank on sorted values.
-double quantile(const std::vector<double>& sorted, double q) {
-  const auto rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(sorted.size())));
-  return sorted[std::clamp<std::size_t>(rank, 1, sorted.size()) - 1];
-}
 
 int pin(int requested) {
   if (requested == -2) return -1;
@@ -146,10 +141,10 @@ StepTimingReport time_steps(std::vector<PreparedController>& controllers, const 
   for (StepTiming& timing : report.controllers) {
     std::vector<double> sorted = timing.nanoseconds;
     std::sort(sorted.begin(), sorted.end());
-    timing.median = quantile(sorted, 0.5);
-    timing.p10 = quantile(sorted, 0.1);
-    timing.p90 = quantile(sorted, 0.9);
-    timing.p99 = quantile(sorted, 0.99);
+    timing.median = sim::nearest_rank(sorted, 0.5);
+    timing.p10 = sim::nearest_rank(sorted, 0.1);
+    timing.p90 = sim::nearest_rank(sorted, 0.9);
+    timing.p99 = sim::nearest_rank(sorted, 0.99);
     timing.max = sorted.back();
     timing.real_time = timing.max < options.budget_seconds * 1e9;
   }

@@ -44,9 +44,7 @@ void RunMetrics::finish(RunSummary& summary) {
   summary.compute_ns_mean = sum / static_cast<double>(n);
   summary.compute_ns_median = n % 2 == 1 ? static_cast<double>(compute_ns_[n / 2])
                                          : 0.5 * static_cast<double>(compute_ns_[n / 2 - 1] + compute_ns_[n / 2]);
-  // Nearest rank: the smallest sample with at least 99 % of the samples at or below it.
-  const auto rank = static_cast<std::size_t>(std::ceil(0.99 * static_cast<double>(n)));
-  summary.compute_ns_p99 = static_cast<double>(compute_ns_[std::max<std::size_t>(rank, 1) - 1]);
+  summary.compute_ns_p99 = nearest_rank(compute_ns_, 0.99);
 }
 
 }  // namespace thetad::sim

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -38,5 +40,13 @@ class RunMetrics {
   Eigen::VectorXd command_square_sum_;
   std::vector<std::int64_t> compute_ns_;
 };
+
+// The nearest-rank q-quantile of ascending `sorted` (not empty): the smallest value with at least
+// a fraction q of the values at or below it.
+template <class Value>
+double nearest_rank(const std::vector<Value>& sorted, double q) {
+  const auto rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(sorted.size())));
+  return static_cast<double>(sorted[std::clamp<std::size_t>(rank, 1, sorted.size()) - 1]);
+}
 
 }  // namespace thetad::sim

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <thread>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -104,6 +105,20 @@ TEST_F(RunFilesTest, AFolderListsItsResultsInNameOrderAndIgnoresOtherJson) {
   EXPECT_EQ(runs[0].label, "a");
   EXPECT_EQ(runs[1].label, "b");
   EXPECT_THAT(error_message([&] { read_result_folder(dir_ / "none"); }), HasSubstr("no such directory"));
+}
+
+// Writers racing on one label: each commit is whole (the folder is locked around the renames), so
+// whatever the interleaving the folder ends with a pair of one run.
+TEST_F(RunFilesTest, RacingCommitsOfOneLabelLeaveAConsistentPair) {
+  const RunResult one = short_run("a", false, 1), two = short_run("a", false, 2);
+  for (int round = 0; round < 40; ++round) {
+    std::thread first([&] { write_run_files(one, dir_); });
+    std::thread second([&] { write_run_files(two, dir_); });
+    first.join();
+    second.join();
+    ASSERT_NO_THROW(read_run_files(dir_ / "a.json")) << "round " << round;
+  }
+  EXPECT_EQ(entries(), (std::vector<std::string>{"a.csv", "a.json"}));
 }
 
 TEST_F(RunFilesTest, PartialNamesAreUniquePerWriteAndRemovedUnlessCommitted) {
