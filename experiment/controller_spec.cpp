@@ -29,6 +29,19 @@ bool registered(const std::string& name) {
   return std::find(names.begin(), names.end(), name) != names.end();
 }
 
+// The YAML document of `file`; errors name the file, line and column.
+YAML::Node load_yaml(const std::filesystem::path& file) {
+  const std::string text = read_text_file(file);
+  try {
+    return YAML::Load(text);
+  } catch (const YAML::Exception& error) {
+    std::ostringstream message;
+    message << file.string() << ":" << error.mark.line + 1 << ":" << error.mark.column + 1
+            << ": invalid YAML: " << error.msg;
+    throw Error(message.str());
+  }
+}
+
 // The block for `name` in a settings file; a null node when there is none.
 YAML::Node block_of(const YAML::Node& file, const std::string& name) {
   return file.IsMap() && file[name] ? file[name] : YAML::Node();
@@ -37,16 +50,7 @@ YAML::Node block_of(const YAML::Node& file, const std::string& name) {
 }  // namespace
 
 YAML::Node load_settings_file(const std::filesystem::path& file) {
-  const std::string text = read_text_file(file);
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::Exception& error) {
-    std::ostringstream message;
-    message << file.string() << ":" << error.mark.line + 1 << ":" << error.mark.column + 1
-            << ": invalid YAML: " << error.msg;
-    throw Error(message.str());
-  }
+  const YAML::Node root = load_yaml(file);
   if (!root.IsDefined() || root.IsNull()) return root;
   if (!root.IsMap())
     throw SettingsError("settings", "expected a map from controller name to its settings", root.Mark(), file.string());
@@ -115,6 +119,25 @@ ControllerSpec parse_controller_spec(const std::string& text, const YAML::Node& 
     if (!spec.settings.IsNull()) spec.settings_source = fallback_source;
   }
   return spec;
+}
+
+std::vector<ControllerSpec> parse_controller_specs(const std::vector<std::string>& texts,
+                                                   const std::filesystem::path& settings_file) {
+  const YAML::Node settings = settings_file.empty() ? YAML::Node() : load_settings_file(settings_file);
+  std::vector<ControllerSpec> specs;
+  for (const auto& text : texts) specs.push_back(parse_controller_spec(text, settings, settings_file.string()));
+  check_labels(specs);
+  return specs;
+}
+
+std::vector<ControllerSpec> load_controller_specs(const std::filesystem::path& file) {
+  const YAML::Node root = load_yaml(file);
+  return with_settings_source(file.string(), [&] {
+    const Settings top(root);
+    top.allow_only({"controllers"});
+    if (!top.has("controllers")) throw top.error("controllers", "missing (required)");
+    return read_controller_specs(root["controllers"], file.string());
+  });
 }
 
 std::vector<ControllerSpec> read_controller_specs(const YAML::Node& list, const std::string& source) {

@@ -27,6 +27,14 @@ YAML::Node load_settings_file(const std::filesystem::path& file);
 ControllerSpec parse_controller_spec(const std::string& text, const YAML::Node& fallback = {},
                                      const std::string& fallback_source = {});
 
+// The specs `texts` (parse_controller_spec), those without a file of their own taking their block
+// from `settings_file` (empty: none); labels checked (check_labels).
+std::vector<ControllerSpec> parse_controller_specs(const std::vector<std::string>& texts,
+                                                   const std::filesystem::path& settings_file = {});
+
+// A file whose `controllers:` key is a list of {label, controller, settings} (read_controller_specs).
+std::vector<ControllerSpec> load_controller_specs(const std::filesystem::path& file);
+
 // A YAML list of {label, controller, settings}, settings being a settings block (a map) or the
 // name of a settings file (relative to `source`'s folder); label defaults to the controller.
 std::vector<ControllerSpec> read_controller_specs(const YAML::Node& list, const std::string& source);

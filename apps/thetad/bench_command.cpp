@@ -44,10 +44,7 @@ int run_bench(const BenchArguments& arguments) {
   RunControls controls = run_controls(options);
   controls.summary_only = true;
   const Flight flight(options.scenario, controls);
-  const YAML::Node settings = options.settings.empty() ? YAML::Node() : load_settings_file(options.settings);
-  std::vector<ControllerSpec> specs;
-  for (const auto& text : arguments.controllers) specs.push_back(parse_controller_spec(text, settings, options.settings.string()));
-  check_labels(specs);
+  const std::vector<ControllerSpec> specs = parse_controller_specs(arguments.controllers, options.settings);
   std::vector<PreparedController> controllers;
   for (const auto& spec : specs) controllers.push_back(flight.prepare(spec));
   if (!options.out.empty() && options.out.has_parent_path()) prepare_output_folder(options.out.parent_path());

@@ -19,8 +19,9 @@ CLI::App* add_compare_command(CLI::App& app, CompareArguments& arguments) {
   compare->add_option("--controllers", arguments.controllers,
                       "Comma-separated NAME, LABEL=NAME or LABEL=NAME:SETTINGS.yaml "
                       "(e.g. paper=theta-d,tuned=theta-d:out/tune/theta-d-tuned.yaml,sdre)")
-      ->required()
       ->delimiter(',');
+  compare->add_option("--controllers-file", arguments.controllers_file,
+                      "YAML file with a `controllers:` list of {label, controller, settings} (instead of --controllers)");
   compare->get_option("--out")->required();
   return compare;
 }
@@ -28,11 +29,11 @@ CLI::App* add_compare_command(CLI::App& app, CompareArguments& arguments) {
 int run_compare(const CompareArguments& arguments) {
   const FlightOptions& options = arguments.flight;
   const Flight flight(options.scenario, run_controls(options));
-  const YAML::Node settings = options.settings.empty() ? YAML::Node() : load_settings_file(options.settings);
-  std::vector<ControllerSpec> specs;
-  for (const auto& text : arguments.controllers)
-    specs.push_back(parse_controller_spec(text, settings, options.settings.string()));
-  check_labels(specs);
+  if (arguments.controllers.empty() == arguments.controllers_file.empty())
+    throw Error("thetad compare needs --controllers or --controllers-file (one of them)");
+  const std::vector<ControllerSpec> specs = arguments.controllers_file.empty()
+                                                ? parse_controller_specs(arguments.controllers, options.settings)
+                                                : load_controller_specs(arguments.controllers_file);
   std::vector<PreparedController> controllers;
   for (const auto& spec : specs) controllers.push_back(flight.prepare(spec));
   prepare_output_folder(options.out);

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,7 @@ namespace thetad::app {
 struct CompareArguments {
   FlightOptions flight;
   std::vector<std::string> controllers;  // NAME, LABEL=NAME, NAME:FILE or LABEL=NAME:FILE
+  std::filesystem::path controllers_file;  // or a YAML list of {label, controller, settings}
 };
 CLI::App* add_compare_command(CLI::App& app, CompareArguments& arguments);
 

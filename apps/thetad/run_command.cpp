@@ -131,9 +131,7 @@ int run_run(const RunArguments& arguments) {
     throw Error("thetad run needs --scenario, --controller and --out (or --replay RESULT.json)");
   // Everything that can be wrong is found before the flight: files, specs, the output folder.
   const Flight flight(arguments.flight.scenario, run_controls(arguments.flight));
-  const YAML::Node settings = arguments.flight.settings.empty() ? YAML::Node() : load_settings_file(arguments.flight.settings);
-  const ControllerSpec spec = parse_controller_spec(arguments.controller, settings, arguments.flight.settings.string());
-  PreparedController prepared = flight.prepare(spec);
+  PreparedController prepared = flight.prepare(parse_controller_specs({arguments.controller}, arguments.flight.settings).front());
   prepare_output_folder(arguments.flight.out);
 
   Progress progress(Progress::mode_for_stderr(arguments.flight.quiet));

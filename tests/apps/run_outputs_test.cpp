@@ -131,6 +131,30 @@ TEST_F(RunOutputs, ALabelledCompareFliesOneControllerTwiceUnderItsLabels) {
   EXPECT_FALSE(fs::exists(dir_ / "twice"));
 }
 
+TEST_F(RunOutputs, AControllersFileListsLabelledSpecs) {
+  write("controllers.yaml", "controllers:\n  - {label: paper, controller: theta-d}\n"
+                            "  - {label: tuned, controller: theta-d, settings: tuned.yaml}\n"
+                            "  - {label: cold, controller: sdre, settings: {mode: cold}}\n");
+  Output output = thetad("compare --scenario " + path("hover.yaml") + " --controllers-file " + path("controllers.yaml") +
+                         " --duration 0.3 --summary-only --out " + path("out"));
+  ASSERT_EQ(output.status, 0) << output.err;
+  const auto comparison = nlohmann::json::parse(thetad::testing::read_text(dir_ / "out" / "comparison.json"));
+  ASSERT_EQ(comparison["runs"].size(), 3u);
+  EXPECT_EQ(comparison["runs"][2]["label"], "cold");
+  EXPECT_EQ(thetad::read_run_files(dir_ / "out" / "cold.json").result["controller_settings"]["mode"], "cold");
+  EXPECT_EQ(thetad::read_run_files(dir_ / "out" / "tuned.json").result["controller_settings"]["k"][1], 0.25);
+
+  output = thetad("compare --scenario " + path("hover.yaml") + " --controllers lqr --controllers-file " +
+                  path("controllers.yaml") + " --out " + path("both"));
+  EXPECT_EQ(output.status, 1);
+  EXPECT_THAT(output.err, HasSubstr("--controllers or --controllers-file (one of them)"));
+  write("typo.yaml", "controlers: []\n");
+  output = thetad("compare --scenario " + path("hover.yaml") + " --controllers-file " + path("typo.yaml") + " --out " +
+                  path("typo"));
+  EXPECT_EQ(output.status, 1);
+  EXPECT_THAT(output.err, HasSubstr(path("typo.yaml") + ":1:1: field 'controlers': unknown field"));
+}
+
 TEST_F(RunOutputs, SummaryOnlyWritesACompleteResultAndNoLog) {
   const Output output = thetad("run --scenario " + path("hover.yaml") + " --controller theta-d --summary-only --out " +
                                path("out"));
