@@ -20,6 +20,7 @@
 #include "experiment/scenario_files.hpp"
 #include "tuning/record.hpp"
 #include "tuning/sigma_fit.hpp"
+#include "tuning/tuning_report.hpp"
 
 namespace thetad::app {
 
@@ -60,23 +61,6 @@ PreparedController make_theta_d(const Flight& flight, const YAML::Node& base, co
   return flight.prepare({label, "theta-d", block, {}});
 }
 
-struct Validation {
-  std::string scenario, role, parameters;
-  sim::RunSummary summary;
-};
-
-nlohmann::ordered_json to_json(const Validation& v) {
-  const sim::RunSummary& s = v.summary;
-  const auto xyz = [](const Eigen::Vector3d& e) { return nlohmann::ordered_json::array({e.x(), e.y(), e.z()}); };
-  return {{"scenario", v.scenario},
-          {"role", v.role},
-          {"parameters", v.parameters},
-          {"status", status_text(s)},
-          {"rms_tracking_error_m", xyz(s.rms_tracking_error)},
-          {"max_tracking_error_m", xyz(s.max_tracking_error)},
-          {"cost", s.cost}};
-}
-
 tuning::FitOptions fit_options(const TuneArguments& a, std::uint64_t seed) {
   tuning::FitOptions options;
   options.algorithm = a.algorithm;
@@ -115,24 +99,10 @@ tuning::TuningRecord fly_record(const TuneArguments& a, const Flight& flight, co
   return record;
 }
 
-std::string curves_csv(const tuning::SigmaMatch& match, const tuning::TuningRecord& record,
-                       const tuning::FitResult& fit) {
-  const Eigen::VectorXd ones = Eigen::VectorXd::Ones(match.parameters());
-  const Eigen::VectorXd sigma_default = match.sigma(ones, ones), sigma_tuned = match.sigma(fit.k, fit.l);
-  std::string curves = "t_s,sigma_sdre,sigma_theta_d_default,sigma_theta_d_tuned\n";
-  char line[128];
-  for (Eigen::Index k = 0; k < match.samples(); ++k) {
-    std::snprintf(line, sizeof line, "%.6f,%.10g,%.10g,%.10g\n", record.time[static_cast<std::size_t>(k)],
-                  match.sigma_sdre()[k], sigma_default[k], sigma_tuned[k]);
-    curves += line;
-  }
-  return curves;
-}
-
 // The default and the tuned θ–D flown on each validation flight.
-std::vector<Validation> validate(const TuneArguments& a, const std::vector<std::pair<const Flight*, std::string>>& flights,
+std::vector<tuning::Validation> validate(const TuneArguments& a, const std::vector<std::pair<const Flight*, std::string>>& flights,
                                  const YAML::Node& base, const tuning::FitResult& fit, Progress& progress) {
-  std::vector<Validation> validations;
+  std::vector<tuning::Validation> validations;
   for (const auto& [flight, role] : flights) {
     for (const bool tuned : {false, true}) {
       const std::string parameters = tuned ? "tuned" : "default";
@@ -144,6 +114,28 @@ std::vector<Validation> validate(const TuneArguments& a, const std::vector<std::
     }
   }
   return validations;
+}
+
+// Quiet and parseable: one key=value line per figure.
+void print_report(const tuning::TuningReport& r, const std::vector<std::filesystem::path>& written) {
+  const tuning::FitResult& fit = r.fit;
+  std::printf("scenario=%s samples=%lld terms=%d algorithm=%s weighting=%s\n", r.scenario.c_str(),
+              static_cast<long long>(r.samples), r.terms, r.options.algorithm.c_str(),
+              r.options.weighting == tuning::Weighting::relative ? "relative" : "absolute");
+  std::printf("k=%s\nl=%s\n", numbers(fit.k).c_str(), numbers(fit.l).c_str());
+  std::printf("residual_default=%.10g residual_tuned=%.10g rms_sigma_error_default=%.6g rms_sigma_error_tuned=%.6g\n",
+              fit.start_residual, fit.residual, r.rms_sigma_error_default(), r.rms_sigma_error_tuned());
+  std::printf("evaluations=%d expansion_seconds=%.3f fit_seconds=%.3f stop=\"%s\"\n", fit.evaluations,
+              r.expansion_seconds, fit.seconds, fit.stop_reason.c_str());
+  for (const tuning::Validation& v : r.validations) {
+    const sim::RunSummary& s = v.summary;
+    std::printf("validation scenario=%s role=%s theta_d=%s status=\"%s\" rms_m=%.5f,%.5f,%.5f max_m=%.5f,%.5f,%.5f "
+                "cost=%.8g\n",
+                v.scenario.c_str(), v.role.c_str(), v.parameters.c_str(), status_text(s).c_str(),
+                s.rms_tracking_error.x(), s.rms_tracking_error.y(), s.rms_tracking_error.z(), s.max_tracking_error.x(),
+                s.max_tracking_error.y(), s.max_tracking_error.z(), s.cost);
+  }
+  std::printf("wrote=%s,%s,%s\n", written[0].c_str(), written[1].c_str(), written[2].c_str());
 }
 
 }  // namespace
@@ -216,72 +208,21 @@ int run_tune(const TuneArguments& a) {
   const tuning::FitResult fit = tuning::fit(match, options);
   if (live) std::fprintf(stderr, "\r\033[K");
 
-  // The settings file: a map from controller name to its block, every field as the tuned θ–D uses
-  // it, so `thetad compare --controllers tuned=theta-d:FILE` flies exactly what was tuned.
-  const PreparedController tuned = make_theta_d(flight, base, "theta-d", a.terms, fit.k, fit.l);
-  YAML::Node file(YAML::NodeType::Map);
-  file["theta-d"] = tuned.settings;
-  YAML::Emitter emitter;
-  emitter.SetDoublePrecision(17);
-  emitter << file;
+  tuning::TuningReport report{flight.scenario().name, flight.settings().seed, match.samples(), reused.has_value(),
+                              a.terms, options_without_progress, fit, expansion_seconds, a.threads, {},
+                              flight.provenance()};
   const std::filesystem::path settings_file = a.flight.out / "theta-d-tuned.yaml";
-  write_file_atomically(settings_file, "# thetad tune on " + flight.scenario().name + " (" + a.algorithm + ", " +
-                                           (a.relative ? "relative" : "absolute") + " residual, seed " +
-                                           std::to_string(flight.settings().seed) + ")\n" + emitter.c_str() + "\n");
-  write_file_atomically(a.flight.out / "sigma-curves.csv", curves_csv(match, record, fit));
+  write_file_atomically(settings_file, tuned_settings_file(report, make_theta_d(flight, base, "theta-d", a.terms, fit.k,
+                                                                                  fit.l).settings));
+  write_file_atomically(a.flight.out / "sigma-curves.csv", sigma_curves_csv(match, record, fit));
 
   std::vector<std::pair<const Flight*, std::string>> validation_flights;
   if (!a.no_validation) validation_flights.emplace_back(&flight, "tuning");
   if (holdout) validation_flights.emplace_back(&*holdout, "held-out");
-  const std::vector<Validation> validations = validate(a, validation_flights, base, fit, progress);
-
-  const double rms_default = std::sqrt(fit.start_residual / static_cast<double>(match.samples()));
-  const double rms_tuned = std::sqrt(fit.residual / static_cast<double>(match.samples()));
-  nlohmann::ordered_json j;
-  j["scenario"] = flight.scenario().name;
-  j["seed"] = flight.settings().seed;
-  j["record"] = {{"samples", match.samples()}, {"reused", reused.has_value()}};
-  j["terms"] = a.terms;
-  j["algorithm"] = a.algorithm;
-  j["weighting"] = a.relative ? "relative" : "absolute";
-  j["bounds"] = {{"k", a.k_bounds}, {"l", a.l_bounds}};
-  j["k"] = std::vector<double>(fit.k.data(), fit.k.data() + fit.k.size());
-  j["l"] = std::vector<double>(fit.l.data(), fit.l.data() + fit.l.size());
-  j["residual_default"] = fit.start_residual;
-  j["residual_tuned"] = fit.residual;
-  j["rms_sigma_error_default"] = rms_default;
-  j["rms_sigma_error_tuned"] = rms_tuned;
-  j["evaluations"] = fit.evaluations;
-  j["stop_reason"] = fit.stop_reason;
-  j["expansion_seconds"] = expansion_seconds;
-  j["fit_seconds"] = fit.seconds;
-  j["threads"] = a.threads;
-  j["validation"] = nlohmann::ordered_json::array();
-  for (const Validation& v : validations) j["validation"].push_back(to_json(v));
-  j["provenance"] = to_json(flight.provenance());
-  write_file_atomically(a.flight.out / "tuning.json", j.dump(2) + "\n");
-
-  // Quiet and parseable: one key=value line per figure.
-  std::printf("scenario=%s samples=%lld terms=%d algorithm=%s weighting=%s\n", flight.scenario().name.c_str(),
-              static_cast<long long>(match.samples()), a.terms, a.algorithm.c_str(), a.relative ? "relative" : "absolute");
-  std::printf("k=%s\nl=%s\n", numbers(fit.k).c_str(), numbers(fit.l).c_str());
-  std::printf("residual_default=%.10g residual_tuned=%.10g rms_sigma_error_default=%.6g rms_sigma_error_tuned=%.6g\n",
-              fit.start_residual, fit.residual, rms_default, rms_tuned);
-  std::printf("evaluations=%d expansion_seconds=%.3f fit_seconds=%.3f stop=\"%s\"\n", fit.evaluations, expansion_seconds,
-              fit.seconds, fit.stop_reason.c_str());
-  for (const Validation& v : validations) {
-    const sim::RunSummary& s = v.summary;
-    std::printf("validation scenario=%s role=%s theta_d=%s status=\"%s\" rms_m=%.5f,%.5f,%.5f max_m=%.5f,%.5f,%.5f "
-                "cost=%.8g\n",
-                v.scenario.c_str(), v.role.c_str(), v.parameters.c_str(), status_text(s).c_str(),
-                s.rms_tracking_error.x(), s.rms_tracking_error.y(), s.rms_tracking_error.z(), s.max_tracking_error.x(),
-                s.max_tracking_error.y(), s.max_tracking_error.z(), s.cost);
-  }
-  std::printf("wrote=%s,%s,%s\n", settings_file.c_str(), (a.flight.out / "sigma-curves.csv").c_str(),
-              (a.flight.out / "tuning.json").c_str());
-  const bool diverged = std::any_of(validations.begin(), validations.end(),
-                                    [](const Validation& v) { return v.summary.status != sim::RunStatus::completed; });
-  return diverged ? kExitDiverged : kExitCompleted;
+  report.validations = validate(a, validation_flights, base, fit, progress);
+  write_file_atomically(a.flight.out / "tuning.json", to_json(report).dump(2) + "\n");
+  print_report(report, {settings_file, a.flight.out / "sigma-curves.csv", a.flight.out / "tuning.json"});
+  return report.any_diverged() ? kExitDiverged : kExitCompleted;
 }
 
 }  // namespace thetad::app
