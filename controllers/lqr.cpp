@@ -4,7 +4,7 @@
 #include <utility>
 
 #include "controllers/registry.hpp"
-#include "core/settings.hpp"
+#include "settings/settings.hpp"
 #include "core/error.hpp"
 #include "core/trim.hpp"
 

@@ -16,7 +16,7 @@
 
 #include "controllers/linearization.hpp"
 #include "core/helicopter/helicopter.hpp"
-#include "core/settings.hpp"
+#include "settings/settings.hpp"
 
 namespace thetad {
 

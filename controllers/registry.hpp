@@ -9,7 +9,7 @@
 
 #include "controllers/controller.hpp"
 #include "core/helicopter/helicopter.hpp"
-#include "core/settings.hpp"
+#include "settings/settings.hpp"
 
 namespace thetad {
 

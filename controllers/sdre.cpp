@@ -3,7 +3,7 @@
 #include <Eigen/Cholesky>
 
 #include "controllers/registry.hpp"
-#include "core/settings.hpp"
+#include "settings/settings.hpp"
 #include "core/error.hpp"
 
 namespace thetad {

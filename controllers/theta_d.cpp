@@ -10,7 +10,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "controllers/registry.hpp"
-#include "core/settings.hpp"
+#include "settings/settings.hpp"
 #include "core/error.hpp"
 #include "core/riccati.hpp"
 

@@ -6,7 +6,7 @@
 
 #include "controllers/registry.hpp"
 #include "core/error.hpp"
-#include "core/settings.hpp"
+#include "settings/settings.hpp"
 #include "experiment/text_file.hpp"
 
 namespace thetad {

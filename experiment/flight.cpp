@@ -4,7 +4,7 @@
 #include <cstdio>
 
 #include "controllers/registry.hpp"
-#include "core/settings.hpp"
+#include "settings/settings.hpp"
 #include "experiment/build_info.hpp"
 #include "experiment/scenario_files.hpp"
 #include "experiment/sha256.hpp"

@@ -2,7 +2,7 @@
 
 #include "controllers/registry.hpp"
 #include "core/error.hpp"
-#include "core/settings.hpp"
+#include "settings/settings.hpp"
 
 namespace thetad {
 

@@ -9,7 +9,7 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include "core/settings.hpp"
+#include "settings/settings.hpp"
 #include "core/error.hpp"
 #include "core/helicopter/state.hpp"
 

@@ -10,7 +10,7 @@
 
 #include "controllers/lqr_scheduled.hpp"
 #include "core/error.hpp"
-#include "core/settings.hpp"
+#include "settings/settings.hpp"
 #include "scenarios/scenario.hpp"
 
 namespace thetad::app {

@@ -8,7 +8,7 @@
 #include <Eigen/Geometry>
 
 #include "controllers/registry.hpp"
-#include "core/settings.hpp"
+#include "settings/settings.hpp"
 #include "core/error.hpp"
 #include "core/helicopter/state.hpp"
 

@@ -14,7 +14,7 @@
 #include "controllers/lqr_scheduled.hpp"
 #include "controllers/registry.hpp"
 #include "core/error.hpp"
-#include "core/settings.hpp"
+#include "settings/settings.hpp"
 #include "tests/controllers/hover_recovery.hpp"
 #include "tests/heap_counter.hpp"
 

@@ -5,7 +5,7 @@
 #include "controllers/linearization.hpp"
 #include "controllers/lqr.hpp"
 #include "controllers/registry.hpp"
-#include "core/settings.hpp"
+#include "settings/settings.hpp"
 #include "core/helicopter/paper_weights.hpp"
 #include "tests/controllers/hover_recovery.hpp"
 #include "tests/core/care_checks.hpp"

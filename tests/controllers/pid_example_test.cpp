@@ -2,7 +2,7 @@
 
 #include "controllers/examples/pid.hpp"
 #include "controllers/registry.hpp"
-#include "core/settings.hpp"
+#include "settings/settings.hpp"
 #include "tests/controllers/hover_recovery.hpp"
 
 namespace thetad {

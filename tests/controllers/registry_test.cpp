@@ -7,7 +7,7 @@
 
 #include "controllers/lqr_scheduled.hpp"
 #include "controllers/registry.hpp"
-#include "core/settings.hpp"
+#include "settings/settings.hpp"
 #include "tests/controllers/hover_recovery.hpp"
 #include "tests/test_plants.hpp"
 

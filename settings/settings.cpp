@@ -1,4 +1,4 @@
-#include "core/settings.hpp"
+#include "settings/settings.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "core/settings.hpp"
+#include "settings/settings.hpp"
 
 namespace thetad {
 namespace {
