@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -215,6 +216,20 @@ TEST_F(RunOutputs, WithoutATerminalProgressComesAsPlainLinesWithRateAndEta) {
   EXPECT_THAT(output.err, Not(HasSubstr("\033")));
   output = thetad("run --scenario " + path("hover.yaml") + " --controller theta-d --quiet --out " + path("out"));
   EXPECT_EQ(output.err, "");
+}
+
+// On a terminal (script(1) gives the program one) the progress is one line redrawn in place.
+TEST_F(RunOutputs, OnATerminalProgressIsOneLineRedrawnWithRateAndEta) {
+  if (!fs::exists("/usr/bin/script")) GTEST_SKIP() << "no script(1) to give thetad a terminal";
+  const std::string command = "env -u CI /usr/bin/script -qec '" + std::string(THETAD_BINARY) + " run --scenario " +
+                              THETAD_SOURCE_DIR "/scenarios/scenario-1.yaml --controller theta-d --duration 60 " +
+                              "--summary-only --out " + path("live") + "' /dev/null > " + path("terminal.txt");
+  ASSERT_EQ(std::system(command.c_str()), 0);
+  const std::string screen = thetad::testing::read_text(dir_ / "terminal.txt");
+  EXPECT_THAT(screen, HasSubstr("\r\033[Ktheta-d: "));
+  EXPECT_THAT(screen, HasSubstr("x real time, ETA "));
+  EXPECT_THAT(screen, HasSubstr("theta-d: completed"));
+  EXPECT_THAT(screen, Not(HasSubstr("flying (60 s simulated)")));  // the plain-lines form
 }
 
 TEST_F(RunOutputs, ConcurrentRunsOfOneLabelInOneFolderLeaveAConsistentPair) {
