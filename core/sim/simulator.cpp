@@ -110,6 +110,32 @@ void reserve_log(const SimulationSettings& settings, std::int64_t samples, RunLo
   log.values.reserve(static_cast<std::size_t>(rows * columns));
 }
 
+// What a run's summary says before it flies: the law, the settings, the model's switches and the
+// drawn Table 1 parameter factors (none without parameter uncertainty).
+void describe_run(const ControlLaw& law, const SimulationSettings& settings, const heli::ModelOptions& options,
+                  const heli::PerturbedParameters& drawn, RunSummary& summary) {
+  summary.controller = law.name();
+  summary.settings = settings;
+  summary.model_options = options.to_string();
+  if (!settings.parameter_uncertainty) return;
+  for (const auto& entry : drawn.report) {
+    if (entry.category == heli::UncertaintyCategory::parameter)
+      summary.parameter_factors.emplace_back(entry.name, entry.factor);
+  }
+}
+
+// V_track of Eq. 36 on the true state, for the cost. Fixed-size pieces: a comma initializer taking
+// the Vector3d would instantiate an 8-wide packet copy that GCC 12 flags (-Warray-bounds) under
+// -march=native.
+void true_tracking_vector(const Eigen::VectorXd& x, const Eigen::Vector3d& error, const Eigen::Vector3d& integral,
+                          Eigen::VectorXd& v_track) {
+  using namespace heli;
+  v_track.segment<3>(kXp) = error;
+  v_track.segment<11>(kU) = x.segment<11>(kU);
+  v_track.segment<3>(kXi) = integral;
+  v_track(kS) = 1.0;
+}
+
 // control() of `law`; its wall time (ns) when `timing`, else 0.
 std::int64_t call_control(ControlLaw& law, double t, const Eigen::VectorXd& measured, const Reference& reference,
                           Eigen::VectorXd& command, bool timing) {
@@ -212,14 +238,7 @@ RunResult simulate(ControlLaw& law, const ReferenceTrajectory& reference, const 
 
   RunResult result;
   RunSummary& summary = result.summary;
-  summary.controller = law.name();
-  summary.settings = settings;
-  summary.model_options = options.to_string();
-  if (settings.parameter_uncertainty) {
-    for (const auto& entry : drawn.report) {
-      if (entry.category == UncertaintyCategory::parameter) summary.parameter_factors.emplace_back(entry.name, entry.factor);
-    }
-  }
+  describe_run(law, settings, options, drawn, summary);
   reserve_log(settings, samples, result.log);
 
   Eigen::VectorXd x = x0;
@@ -244,12 +263,9 @@ RunResult simulate(ControlLaw& law, const ReferenceTrajectory& reference, const 
     try {
       elapsed_ns = call_control(law, t, measured, Reference{position_command, reference_integral.value}, command,
                                 settings.measure_compute_time);
+      if (!command.allFinite()) throw Error("non-finite command");
     } catch (const Error& error) {
       failure = failure_reason("controller", error, t);
-      break;
-    }
-    if (!command.allFinite()) {
-      failure = failure_reason("controller", Error("non-finite command"), t);
       break;
     }
     apply_actuator_noise(command, draws, levels, settings.noise, applied);
@@ -262,12 +278,7 @@ RunResult simulate(ControlLaw& law, const ReferenceTrajectory& reference, const 
     }
 
     const Eigen::Vector3d error = x.segment<3>(kXp) - position_command;
-    // Eq. 36 on the true state. Fixed-size pieces: a comma initializer taking the Vector3d would
-    // instantiate an 8-wide packet copy that GCC 12 flags (-Warray-bounds) under -march=native.
-    v_track.segment<3>(kXp) = error;
-    v_track.segment<11>(kU) = x.segment<11>(kU);
-    v_track.segment<3>(kXi) = true_error_integral.value;
-    v_track(kS) = 1.0;
+    true_tracking_vector(x, error, true_error_integral.value, v_track);
     metrics.add(error, v_track, command, elapsed_ns);
     if (settings.keep_log && k % settings.log_every == 0)
       append_row(t, position_command, x, measured, command, applied, rotor_speed, plant.environment().wind_ned,

@@ -156,6 +156,20 @@ TEST_F(RunOutputs, AControllersFileListsLabelledSpecs) {
   EXPECT_THAT(output.err, HasSubstr(path("typo.yaml") + ":1:1: field 'controlers': unknown field"));
 }
 
+TEST_F(RunOutputs, NoTimingRerunsOfOneSeedWriteByteIdenticalFiles) {
+  for (const char* folder : {"a", "b"}) {
+    const Output output = thetad("run --scenario " + path("hover.yaml") + " --controller theta-d --no-timing --out " +
+                                 path(folder));
+    ASSERT_EQ(output.status, 0) << output.err;
+  }
+  for (const char* file : {"theta-d.csv", "theta-d.json"}) {
+    EXPECT_EQ(thetad::testing::read_text(dir_ / "a" / file), thetad::testing::read_text(dir_ / "b" / file)) << file;
+  }
+  const std::string result = thetad::testing::read_text(dir_ / "a" / "theta-d.json");
+  for (const char* wall_clock : {"host", "start_time", "wall_seconds", "compute_time_ns"})
+    EXPECT_THAT(result, Not(HasSubstr(wall_clock))) << wall_clock;
+}
+
 TEST_F(RunOutputs, SummaryOnlyWritesACompleteResultAndNoLog) {
   const Output output = thetad("run --scenario " + path("hover.yaml") + " --controller theta-d --summary-only --out " +
                                path("out"));
