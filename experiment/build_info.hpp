@@ -14,6 +14,8 @@ struct BuildInfo {
   std::string flags;         // the compiler flags of the build type, -march=native and sanitizers included
   std::string eigen;         // "3.4.0" and the SIMD instruction sets Eigen compiled for
   std::string lapack;        // the LAPACK/BLAS libraries linked
+  std::string blas_loaded;   // the library that provides dgemm in this process
+  std::string lapack_loaded; // the library that provides dgees in this process
 };
 
 const BuildInfo& build_info();

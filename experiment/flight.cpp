@@ -68,6 +68,7 @@ RunResult Flight::fly(PreparedController& prepared, Progress* progress, const st
   RunResult result;
   result.spec = prepared.spec;
   result.settings = prepared.settings;
+  result.controller_origin = ControllerRegistry::instance().origin(prepared.spec.controller);
   result.provenance = provenance_;
   if (settings_.measure_compute_time) stamp_host_and_time(result.provenance);
   if (progress) progress->start(heading.empty() ? prepared.spec.label + ":" : heading, settings_.duration);

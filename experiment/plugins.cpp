@@ -11,6 +11,7 @@
 
 #include "controllers/registry.hpp"
 #include "core/error.hpp"
+#include "experiment/sha256.hpp"
 
 namespace thetad {
 
@@ -27,7 +28,8 @@ void load_plugin(const fs::path& library) {
   // The registrations run inside dlopen(): the scope names where they come from.
   ControllerRegistry& registry = ControllerRegistry::instance();
   {
-    const ControllerRegistry::OriginScope origin("plug-in " + file.string());
+    // The digest makes results name the very library that flew (provenance: the controller's origin).
+    const ControllerRegistry::OriginScope origin("plug-in " + file.string() + " (sha256 " + sha256_of_file(file) + ")");
     // RTLD_NOW: a symbol the program does not provide is an error now, not a crash mid-flight.
     if (dlopen(file.c_str(), RTLD_NOW | RTLD_LOCAL) == nullptr)
       throw Error("cannot load plug-in " + file.string() + ": " + dlerror());

@@ -15,7 +15,9 @@ nlohmann::ordered_json to_json(const Provenance& p) {
   j["compiler"] = p.build.compiler;
   j["compiler_flags"] = p.build.flags;
   j["eigen"] = p.build.eigen;
-  j["lapack"] = p.build.lapack;
+  j["lapack_linked"] = p.build.lapack;
+  j["blas_loaded"] = p.build.blas_loaded;
+  j["lapack_loaded"] = p.build.lapack_loaded;
   j["scenario"] = {{"name", p.scenario_name}, {"file", p.scenario_file}, {"sha256", p.scenario_sha256}};
   j["model"] = {{"preset", p.model_preset}, {"options", p.model_options}};
   j["seed"] = p.seed;

@@ -98,6 +98,7 @@ Json result_json(const RunResult& result, const LogFile* log) {
   j["format"] = kRunFormat;
   j["label"] = result.spec.label;
   j["controller"] = result.spec.controller;
+  j["controller_origin"] = result.controller_origin;
   j.update(summary_json(result.summary));
   j["controller_settings"] = yaml_to_json(result.settings);
   j["settings_source"] = result.spec.settings_source;

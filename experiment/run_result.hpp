@@ -16,6 +16,7 @@ namespace thetad {
 struct RunResult {
   ControllerSpec spec;
   YAML::Node settings;  // resolved: every field of the controller's settings, defaults included
+  std::string controller_origin;  // "built-in", or the plug-in (path and SHA-256) it came from
   sim::RunSummary summary;
   sim::RunLog log;      // empty when summary-only
   Provenance provenance;

@@ -36,7 +36,7 @@ class Plugins : public ::testing::Test {
 TEST_F(Plugins, ListShowsWhereEachControllerComesFrom) {
   const Output output = thetad(std::string("--plugin ") + THETAD_EXAMPLE_PLUGIN + " list");
   ASSERT_EQ(output.status, 0) << output.err;
-  EXPECT_THAT(output.out, HasSubstr("[plug-in " + fs::canonical(THETAD_EXAMPLE_PLUGIN).string() + "]"));
+  EXPECT_THAT(output.out, HasSubstr("[plug-in " + fs::canonical(THETAD_EXAMPLE_PLUGIN).string() + " (sha256 "));
   EXPECT_THAT(output.out, HasSubstr("\nexample-pid-plugin "));
   EXPECT_THAT(output.out, HasSubstr("[built-in]"));
 }
@@ -52,6 +52,9 @@ TEST_F(Plugins, APluginControllerFliesLikeABuiltInOne) {
   // The same source compiled twice: the same flight, to the last bit.
   EXPECT_EQ(read("plugged")["cost"]["J"], read("built-in")["cost"]["J"]);
   EXPECT_EQ(read("plugged")["controller"], "example-pid-plugin");
+  EXPECT_THAT(read("plugged")["controller_origin"].get<std::string>(),
+              HasSubstr("plug-in " + fs::canonical(THETAD_EXAMPLE_PLUGIN).string() + " (sha256 "));
+  EXPECT_EQ(read("built-in")["controller_origin"], "built-in");
   EXPECT_LT(read("plugged")["tracking_error_m"]["max"][2].get<double>(), 0.05);
 }
 

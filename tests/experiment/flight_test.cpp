@@ -91,6 +91,8 @@ TEST(Flight, ProvenanceSaysWhatProducedTheRun) {
   EXPECT_FALSE(p.build.build_type.empty());
   EXPECT_FALSE(p.build.compiler.empty());
   EXPECT_THAT(p.build.eigen, HasSubstr("3."));
+  EXPECT_THAT(p.build.blas_loaded, HasSubstr("blas"));
+  EXPECT_THAT(p.build.lapack_loaded, HasSubstr("lapack"));
   EXPECT_EQ(p.scenario_name, "scenario-1");
   EXPECT_EQ(p.scenario_file, kScenario);
   EXPECT_EQ(p.scenario_sha256, sha256_of_file(kScenario));
