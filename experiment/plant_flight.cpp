@@ -1,7 +1,12 @@
 #include "experiment/plant_flight.hpp"
 
+#include <charconv>
+
 #include "controllers/registry.hpp"
 #include "core/error.hpp"
+#include "experiment/build_info.hpp"
+#include "experiment/result_json.hpp"
+#include "experiment/sha256.hpp"
 #include "settings/settings.hpp"
 
 namespace thetad {
@@ -14,7 +19,62 @@ PlantFlightResult fly_plant(const SdcPlant& plant, const ControllerSpec& spec, c
   const ControllerContext context(plant, x0, 0.0);
   auto build = [&] { return ControllerRegistry::instance().build(spec.controller, spec.settings, context); };
   BuiltController built = spec.settings_source.empty() ? build() : with_settings_source(spec.settings_source, build);
-  return {spec, built.settings, sim::simulate_plant(*built.controller, plant, reference, x0, settings)};
+  return {spec, built.settings, settings, x0, sim::simulate_plant(*built.controller, plant, reference, x0, settings)};
+}
+
+RunFiles write_plant_run_files(const PlantFlightResult& result, const std::string& plant,
+                               const std::filesystem::path& folder) {
+  const Eigen::MatrixXd& log = result.run.log;
+  const auto n = result.initial_state.size(), m = log.cols() - 1 - n;
+  LogWriter write_log;
+  if (result.simulation.keep_log) {
+    write_log = [&](std::ostream& out) {
+      std::string text = "t_s";
+      for (Eigen::Index i = 0; i < n; ++i) text += ",x_" + std::to_string(i);
+      for (Eigen::Index j = 0; j < m; ++j) text += ",u_" + std::to_string(j);
+      text += '\n';
+      char number[32];
+      for (Eigen::Index r = 0; r < log.rows(); ++r)
+        for (Eigen::Index c = 0; c < log.cols(); ++c) {
+          const auto [end, status] = std::to_chars(number, number + sizeof number, log(r, c));
+          text.append(number, end);
+          text += c + 1 == log.cols() ? '\n' : ',';
+        }
+      out << text;
+      return LogFile{{}, sha256_hex(text), log.rows()};
+    };
+  }
+  return write_result_files(folder, result.spec.label, write_log, [&](const LogFile* file) {
+    const sim::PlantRun& run = result.run;
+    nlohmann::ordered_json j;
+    j["format"] = kPlantRunFormat;
+    j["label"] = result.spec.label;
+    j["controller"] = result.spec.controller;
+    j["controller_origin"] = ControllerRegistry::instance().origin(result.spec.controller);
+    j["plant"] = plant;
+    j["status"] = run.status == sim::RunStatus::completed ? "completed" : "diverged";
+    j["reason"] = run.reason;
+    j["end_time_s"] = run.end_time;
+    j["controller_samples"] = run.controller_samples;
+    j["cost"] = {{"definition", "J = 1/2 sum_k (v' Q v + u' R u) T_c, v = tracking_vector, the plant's design Q, R"},
+                 {"J", run.cost}};
+    nlohmann::ordered_json counters = nlohmann::ordered_json::object();
+    for (const auto& [name, count] : run.controller_counters) counters[name] = count;
+    j["controller_counters"] = counters;
+    j["controller_settings"] = yaml_to_json(result.settings);
+    j["settings_source"] = result.spec.settings_source;
+    j["initial_state"] = std::vector<double>(result.initial_state.data(), result.initial_state.data() + n);
+    j["settings"] = {{"dt_s", result.simulation.dt},
+                     {"controller_period_s", result.simulation.controller_period()},
+                     {"duration_s", result.simulation.duration},
+                     {"log_every", result.simulation.log_every}};
+    j["log"] = file ? nlohmann::ordered_json{{"csv", file->file}, {"sha256", file->sha256}, {"rows", file->rows}}
+                    : nlohmann::ordered_json(nullptr);
+    Provenance provenance;
+    provenance.build = build_info();
+    j["provenance"] = to_json(provenance);
+    return j;
+  });
 }
 
 }  // namespace thetad

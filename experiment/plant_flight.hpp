@@ -7,6 +7,7 @@
 #include "core/sdc_plant.hpp"
 #include "core/sim/plant_simulator.hpp"
 #include "experiment/controller_spec.hpp"
+#include "experiment/run_files.hpp"
 #include "experiment/run_controls.hpp"
 
 namespace thetad {
@@ -16,6 +17,8 @@ namespace thetad {
 struct PlantFlightResult {
   ControllerSpec spec;
   YAML::Node settings;  // resolved: every field of the controller's settings
+  sim::SimulationSettings simulation;
+  Eigen::VectorXd initial_state;
   sim::PlantRun run;
 };
 
@@ -24,5 +27,12 @@ struct PlantFlightResult {
 // disturbance controls do not apply (a plain SdcPlant has none). Errors name the settings file.
 PlantFlightResult fly_plant(const SdcPlant& plant, const ControllerSpec& spec, const Eigen::VectorXd& x0,
                             const ReferenceTrajectory& reference, const RunControls& controls);
+
+// Writes <folder>/<label>.csv (t_s, x_0 ..., u_0 ...; unless summary-only) and <folder>/<label>.json
+// (format thetad-plant-run-1: the plant's name, the controller and its settings, status, cost,
+// settings, the build) as write_run_files commits a scenario's run.
+inline constexpr const char* kPlantRunFormat = "thetad-plant-run-1";
+RunFiles write_plant_run_files(const PlantFlightResult& result, const std::string& plant,
+                               const std::filesystem::path& folder);
 
 }  // namespace thetad

@@ -113,24 +113,22 @@ void prepare_output_folder(const fs::path& folder) {
   if (!out) throw Error("--out " + folder.string() + ": cannot write there: " + std::strerror(errno));
 }
 
-RunFiles write_run_files(const RunResult& result, const fs::path& folder) {
-  const std::string& label = result.spec.label;
-  const bool timing = result.summary.settings.measure_compute_time;
+RunFiles write_result_files(const fs::path& folder, const std::string& label, const LogWriter& write_log,
+                            const std::function<Json(const LogFile*)>& result) {
   RunFiles files{{}, folder / (label + ".json")};
   std::error_code created;
   fs::create_directories(folder, created);
   if (created) throw Error("cannot create " + folder.string() + ": " + created.message());
   std::optional<PartialFile> csv;
   LogFile log;
-  if (result.summary.settings.keep_log) {
+  if (write_log) {
     files.csv = folder / (label + ".csv");
     csv.emplace(files.csv);
-    csv->write([&](std::ostream& out) {
-      log = {files.csv.filename().string(), write_csv(result.log, timing, out), result.log.rows()};
-    });
+    csv->write([&](std::ostream& out) { log = write_log(out); });
+    log.file = files.csv.filename().string();
   }
   PartialFile json(files.json);
-  json.write([&](std::ostream& out) { out << result_json(result, csv ? &log : nullptr).dump(2) << '\n'; });
+  json.write([&](std::ostream& out) { out << result(csv ? &log : nullptr).dump(2) << '\n'; });
   // One commit per folder at a time: two thetad processes writing one label into one folder leave
   // the pair of one of them, never the log of one beside the result of the other.
   const FolderLock lock(folder);
@@ -149,6 +147,15 @@ RunFiles write_run_files(const RunResult& result, const fs::path& folder) {
     fs::remove(folder / (label + ".csv"), ignored);
   }
   return files;
+}
+
+RunFiles write_run_files(const RunResult& result, const fs::path& folder) {
+  const bool timing = result.summary.settings.measure_compute_time;
+  LogWriter write_log;
+  if (result.summary.settings.keep_log)
+    write_log = [&](std::ostream& out) { return LogFile{{}, write_csv(result.log, timing, out), result.log.rows()}; };
+  return write_result_files(folder, result.spec.label, write_log,
+                            [&](const LogFile* log) { return result_json(result, log); });
 }
 
 StoredRun read_run_files(const fs::path& json_file) {

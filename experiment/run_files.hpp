@@ -1,12 +1,15 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
+#include <ostream>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "core/sim/simulator.hpp"
+#include "experiment/result_json.hpp"
 #include "experiment/run_result.hpp"
 
 namespace thetad {
@@ -30,6 +33,12 @@ struct RunFiles {
 // belong together (a kill between the renames) and trusts a CSV only through its JSON. Throws
 // thetad::Error naming the file; no temporary file is left behind.
 RunFiles write_run_files(const RunResult& result, const std::filesystem::path& folder);
+
+// The same commit for any result: `write_log` (none: no log) writes the CSV and returns its
+// SHA-256 and row count; `result` makes the JSON, given the log it must name (null: none).
+using LogWriter = std::function<LogFile(std::ostream&)>;
+RunFiles write_result_files(const std::filesystem::path& folder, const std::string& label, const LogWriter& write_log,
+                            const std::function<nlohmann::ordered_json(const LogFile*)>& result);
 
 // A result read back: the JSON, and its CSV checked against it.
 struct StoredRun {

@@ -7,6 +7,8 @@
 #include "controllers/registry.hpp"
 #include "core/error.hpp"
 #include "experiment/controller_spec.hpp"
+#include "experiment/plant_flight.hpp"
+#include "experiment/plant_registry.hpp"
 #include "experiment/replay.hpp"
 #include "experiment/result_json.hpp"
 #include "experiment/run_files.hpp"
@@ -74,6 +76,33 @@ int run_replay(const RunArguments& arguments) {
   return replayed.result.completed() ? kExitCompleted : kExitDiverged;
 }
 
+// thetad run --plant: the controller on a registered plant of the user's, from its initial state
+// (or --initial-state), regulating to the origin.
+int run_plant(const RunArguments& arguments) {
+  if (!arguments.flight.scenario.empty()) throw Error("thetad run: --plant and --scenario exclude each other");
+  const RunControls controls = run_controls(arguments.flight);
+  if (!controls.duration) throw Error("thetad run --plant needs --duration (a plant has no scenario to say it)");
+  NamedPlant plant = PlantRegistry::instance().make(arguments.plant, YAML::Node());
+  if (!arguments.initial_state.empty())
+    plant.initial_state = Eigen::Map<const Eigen::VectorXd>(arguments.initial_state.data(),
+                                                            static_cast<Eigen::Index>(arguments.initial_state.size()));
+  if (plant.initial_state.size() != plant.plant->state_dim())
+    throw Error("--initial-state: the plant '" + arguments.plant + "' has " + std::to_string(plant.plant->state_dim()) +
+                " states, got " + std::to_string(plant.initial_state.size()));
+  const ControllerSpec spec = parse_controller_specs({arguments.controller}, arguments.flight.settings).front();
+  prepare_output_folder(arguments.flight.out);
+  const FixedPosition origin(Eigen::Vector3d::Zero());
+  const PlantFlightResult result = fly_plant(*plant.plant, spec, plant.initial_state, origin, controls);
+  const RunFiles files = write_plant_run_files(result, arguments.plant, arguments.flight.out);
+  const sim::PlantRun& run = result.run;
+  std::printf("%s on plant %s (%g s): %s%s%s; cost J = %.6g over %lld controller samples.\n", spec.label.c_str(),
+              arguments.plant.c_str(), result.simulation.duration,
+              run.status == sim::RunStatus::completed ? "completed" : "diverged", run.reason.empty() ? "" : ": ",
+              run.reason.c_str(), run.cost, static_cast<long long>(run.controller_samples));
+  std::printf("Wrote %s.\n", files.json.c_str());
+  return run.status == sim::RunStatus::completed ? kExitCompleted : kExitDiverged;
+}
+
 }  // namespace
 
 void add_flight_options(CLI::App& command, FlightOptions& options, bool scenario_required) {
@@ -119,6 +148,11 @@ CLI::App* add_run_command(CLI::App& app, RunArguments& arguments) {
   add_flight_options(*run, arguments.flight, false);
   run->add_option("--controller", arguments.controller,
                   "NAME, LABEL=NAME, NAME:SETTINGS.yaml or LABEL=NAME:SETTINGS.yaml (see thetad list)");
+  run->add_option("--plant", arguments.plant,
+                  "Fly a registered plant of your own (a plug-in's; see thetad list) instead of a scenario; needs "
+                  "--duration");
+  run->add_option("--initial-state", arguments.initial_state, "With --plant: the initial state (comma-separated)")
+      ->delimiter(',');
   run->add_option("--replay", arguments.replay,
                   "Fly again the run a result JSON describes, from what it records, and check that the summary "
                   "agrees (exit code 4 when it does not)");
@@ -127,6 +161,7 @@ CLI::App* add_run_command(CLI::App& app, RunArguments& arguments) {
 
 int run_run(const RunArguments& arguments) {
   if (!arguments.replay.empty()) return run_replay(arguments);
+  if (!arguments.plant.empty()) return run_plant(arguments);
   if (arguments.flight.scenario.empty() || arguments.controller.empty() || arguments.flight.out.empty())
     throw Error("thetad run needs --scenario, --controller and --out (or --replay RESULT.json)");
   // Everything that can be wrong is found before the flight: files, specs, the output folder.
@@ -149,6 +184,8 @@ int run_list() {
     std::printf("%-*s  %s [%s]\n", static_cast<int>(width), name.c_str(), registry.description(name).c_str(),
                 registry.origin(name).c_str());
   }
+  const PlantRegistry& plants = PlantRegistry::instance();
+  for (const auto& name : plants.names()) std::printf("plant %s  %s\n", name.c_str(), plants.description(name).c_str());
   return 0;
 }
 

@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -36,6 +37,8 @@ struct RunArguments {
   FlightOptions flight;
   std::string controller;
   std::filesystem::path replay;
+  std::string plant;                  // a registered plant (a plug-in's) instead of a scenario
+  std::vector<double> initial_state;  // for --plant; empty: the plant's own
 };
 CLI::App* add_run_command(CLI::App& app, RunArguments& arguments);
 // thetad run: one controller, <out>/<label>.csv and .json, a summary paragraph on stdout.

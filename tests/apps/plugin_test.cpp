@@ -1,6 +1,7 @@
 // Controllers from plug-ins, loaded by the built thetad as a user loads them: --plugin (before or
 // after the command), THETAD_PLUGIN_PATH, the origin shown by `thetad list`, and clear errors.
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -68,6 +69,37 @@ TEST_F(Plugins, ThePluginPathLoadsFilesAndFolders) {
   const Output missing = thetad("list", "THETAD_PLUGIN_PATH=" + path("nowhere"));
   EXPECT_EQ(missing.status, 1);
   EXPECT_THAT(missing.err, HasSubstr("THETAD_PLUGIN_PATH: " + path("nowhere") + " does not exist"));
+}
+
+// A user's plant from a plug-in, flown by θ–D and the SDRE from the command line.
+TEST_F(Plugins, APluginPlantFliesThetaDAndSdreFromTheCommandLine) {
+  const std::string plugin = std::string("--plugin ") + THETAD_PLANT_PLUGIN;
+  const Output list = thetad(plugin + " list");
+  ASSERT_EQ(list.status, 0) << list.err;
+  EXPECT_THAT(list.out, HasSubstr("plant companion  Duffing-type oscillator"));
+  for (const char* controller : {"theta-d", "sdre"}) {
+    const Output output = thetad(plugin + " run --plant companion --controller " + controller +
+                                 " --duration 10 --initial-state 0.8,0.2 --out " + path("plant"));
+    ASSERT_EQ(output.status, 0) << output.err;
+    EXPECT_THAT(output.out, HasSubstr(std::string(controller) + " on plant companion (10 s): completed"));
+    const auto result =
+        nlohmann::json::parse(thetad::testing::read_text(dir_ / "plant" / (std::string(controller) + ".json")));
+    EXPECT_EQ(result["format"], "thetad-plant-run-1");
+    EXPECT_EQ(result["plant"], "companion");
+    EXPECT_EQ(result["initial_state"], nlohmann::json::array({0.8, 0.2}));
+    EXPECT_EQ(result["controller_samples"], 10000);
+    // At rest at the end: the last logged state.
+    const std::string csv = thetad::testing::read_text(dir_ / "plant" / (std::string(controller) + ".csv"));
+    EXPECT_EQ(csv.substr(0, csv.find('\n')), "t_s,x_0,x_1,u_0");
+    const std::string last = csv.substr(csv.rfind('\n', csv.size() - 2) + 1);
+    EXPECT_LT(std::abs(std::stod(last.substr(last.find(',') + 1))), 1e-3) << last;
+  }
+  const Output bad = thetad(plugin + " run --plant companion --controller lqr --duration 1 --out " + path("plant"));
+  EXPECT_EQ(bad.status, 1);
+  EXPECT_THAT(bad.err, HasSubstr("lqr: flies only the X-Cell helicopter"));
+  const Output unknown = thetad("run --plant nowhere --controller theta-d --duration 1 --out " + path("plant"));
+  EXPECT_EQ(unknown.status, 1);
+  EXPECT_THAT(unknown.err, HasSubstr("unknown plant 'nowhere'"));
 }
 
 TEST_F(Plugins, BadPluginsAreOneClearLine) {
