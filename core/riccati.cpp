@@ -119,6 +119,10 @@ struct Solution {
 // Fills K, the closed-loop spectrum and the residual, and refuses a P that does not stabilize:
 // the last line of defence against returning garbage.
 CareResult finish(const MatrixRef& A, const MatrixRef& B, const Weights& w, Solution s, int iterations) {
+  // A basis of the stable subspace that is not a graph can slip past the rcond test (or come out
+  // of a balancing that had nothing to balance) as Inf/NaN entries: never return those.
+  if (!s.P.allFinite() || !s.WP.allFinite())
+    fail("no stabilizing solution: the computed P has non-finite entries" + std::string(kStabilizabilityHint));
   CareResult result;
   result.K = w.L.transpose().triangularView<Eigen::Upper>().solve(s.WP);
   if (s.closed_loop_eigenvalues) {
@@ -327,11 +331,59 @@ MatrixXd schur_solution(const ScaledHamiltonian& scaled_h, Eigen::VectorXcd& sta
   return scaled_h.unscale(lu.solve(U.bottomLeftCorner(n, n).transpose()).transpose());
 }
 
-}  // namespace
+// Which precondition of a stabilizing solution the data break, by the Popov–Belevitch–Hautus
+// tests: a mode of A with Re λ ≥ 0 that B cannot reach, or a mode on the imaginary axis that Q
+// does not see. "" when neither is found (then the equation is only too ill-conditioned). Run
+// only after a solve failed: it costs an eigensolver and one SVD per suspect mode.
+std::string broken_precondition(const MatrixRef& A, const MatrixRef& B, const MatrixRef& Q) {
+  const Index n = A.rows();
+  const double scale = std::max({1.0, A.norm(), B.norm(), Q.norm()});
+  const double tolerance = 100.0 * static_cast<double>(n) * kEps * scale;
+  const Eigen::VectorXcd modes = Eigen::EigenSolver<MatrixXd>(A, false).eigenvalues();
+  const auto smallest_singular_value = [](const Eigen::MatrixXcd& M) {
+    return Eigen::JacobiSVD<Eigen::MatrixXcd>(M).singularValues().minCoeff();
+  };
+  for (const std::complex<double> lambda : modes) {
+    const Eigen::MatrixXcd shifted = A.cast<std::complex<double>>() - lambda * Eigen::MatrixXcd::Identity(n, n);
+    const std::string mode = "λ = " + num(lambda.real()) + (lambda.imag() >= 0 ? "+" : "") + num(lambda.imag()) + "i";
+    if (lambda.real() >= -tolerance) {
+      Eigen::MatrixXcd reach(n, n + B.cols());
+      reach << shifted, B.cast<std::complex<double>>();
+      const double sigma = smallest_singular_value(reach);
+      if (sigma <= tolerance)
+        return "the pair (A, B) is not stabilizable: the mode " + mode + " of A is not controllable (σ_min[A − λI, B] = " +
+               num(sigma) + ")";
+    }
+    if (std::abs(lambda.real()) <= tolerance) {
+      Eigen::MatrixXcd see(2 * n, n);
+      see << shifted, Q.cast<std::complex<double>>();
+      const double sigma = smallest_singular_value(see);
+      if (sigma <= tolerance)
+        return "(Q, A) is not detectable: the mode " + mode + " of A on the imaginary axis is not seen by Q "
+               "(σ_min[A − λI; Q] = " + num(sigma) + ")";
+    }
+  }
+  return {};
+}
 
-CareResult solve_care(const MatrixRef& A, const MatrixRef& B, const MatrixRef& Q, const MatrixRef& R,
-                      CareMethod method) {
-  check_inputs(A, B, Q, R);
+// Runs `solve`; a failure gets the precondition the data break, when one is, in front.
+template <class Solve>
+CareResult diagnosed(const MatrixRef& A, const MatrixRef& B, const MatrixRef& Q, Solve&& solve) {
+  try {
+    return solve();
+  } catch (const Error& error) {
+    const std::string broken = broken_precondition(A, B, Q);
+    if (broken.empty()) throw;
+    // The solver's own words, less the "CARE: " and the generic hint that `broken` now makes precise.
+    std::string solver = std::string(error.what()).substr(6);
+    if (const auto hint = solver.find(kStabilizabilityHint); hint != std::string::npos)
+      solver.erase(hint, std::string(kStabilizabilityHint).size());
+    throw Error("CARE: " + broken + " (" + solver + ")");
+  }
+}
+
+CareResult solve_checked(const MatrixRef& A, const MatrixRef& B, const MatrixRef& Q, const MatrixRef& R,
+                         CareMethod method) {
   const Weights w = prepare_weights(B, Q, R);
   const Index n = A.rows();
   const MatrixXd H = hamiltonian(A, w);
@@ -366,6 +418,14 @@ CareResult solve_care(const MatrixRef& A, const MatrixRef& B, const MatrixRef& Q
   // refined P is no longer that P exactly, so its spectrum is computed afresh.
   return finish(A, B, w, {std::move(c.P), std::move(c.WP), &c.Res, refinements == 0 ? &stable : nullptr},
                 refinements);
+}
+
+}  // namespace
+
+CareResult solve_care(const MatrixRef& A, const MatrixRef& B, const MatrixRef& Q, const MatrixRef& R,
+                      CareMethod method) {
+  check_inputs(A, B, Q, R);
+  return diagnosed(A, B, Q, [&] { return solve_checked(A, B, Q, R, method); });
 }
 
 CareResult solve_care_newton(const MatrixRef& A, const MatrixRef& B, const MatrixRef& Q, const MatrixRef& R,

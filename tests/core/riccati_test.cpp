@@ -355,14 +355,16 @@ TEST(SolveCareErrors, BadWeights) {
 TEST(SolveCareErrors, ImaginaryAxisEigenvalues) {
   // A = 0 with no input: the Hamiltonian [[0, 0], [−1, 0]] has λ = 0 twice.
   EXPECT_THAT(error_message([&] { solve_care(scalar(0), scalar(0), scalar(1), scalar(1)); }),
-              AllOf(HasSubstr("eigenvalues on the imaginary axis (|Re λ| = 0"), HasSubstr("not be stabilizable")));
+              AllOf(HasSubstr("eigenvalues on the imaginary axis (|Re λ| = 0"),
+                    HasSubstr("the pair (A, B) is not stabilizable: the mode λ = 0+0i of A is not controllable")));
   // Undamped oscillator that Q does not see: unobservable modes ±i on the axis.
   MatrixXd A(2, 2);
   A << 0, 1, -1, 0;
   MatrixXd B(2, 1);
   B << 0, 1;
   EXPECT_THAT(error_message([&] { solve_care(A, B, MatrixXd::Zero(2, 2), scalar(1)); }),
-              AllOf(HasSubstr("imaginary axis"), HasSubstr("not detectable")));
+              AllOf(HasSubstr("imaginary axis"), HasSubstr("(Q, A) is not detectable: the mode λ = 0"),
+                    HasSubstr("i of A on the imaginary axis is not seen by Q")));
 }
 
 TEST(SolveCareErrors, MatrixSignRefusesWhatItCannotSolve) {
@@ -382,7 +384,21 @@ TEST(SolveCareErrors, Unstabilizable) {
   MatrixXd B(2, 1);
   B << 0, 1;
   EXPECT_THAT(error_message([&] { solve_care(A, B, MatrixXd::Identity(2, 2), scalar(1)); }),
-              AllOf(HasSubstr("no stabilizing solution"), HasSubstr("rcond(U1) = "), HasSubstr("not be stabilizable")));
+              AllOf(HasSubstr("no stabilizing solution"), HasSubstr("rcond(U1) = "),
+                    HasSubstr("the pair (A, B) is not stabilizable: the mode λ = 1+0i of A is not controllable")));
+}
+
+// The unstabilizable pair that once came back as a P holding Inf (issue 16): every method refuses
+// it, naming the mode, as MATLAB care, SLICOT and Drake do.
+TEST(SolveCareErrors, UnstabilizableUnstableModeIsRefusedByEveryMethod) {
+  MatrixXd A = Eigen::Vector2d(1.0, 2.0).asDiagonal();
+  MatrixXd B(2, 1);
+  B << 1, 0;
+  for (const CareMethod method : {CareMethod::automatic, CareMethod::matrix_sign, CareMethod::schur}) {
+    EXPECT_THAT(error_message([&] { solve_care(A, B, MatrixXd::Identity(2, 2), scalar(1), method); }),
+                HasSubstr("the pair (A, B) is not stabilizable: the mode λ = 2+0i of A is not controllable "
+                          "(σ_min[A − λI, B] = 0)"));
+  }
 }
 
 TEST(SolveCareNewton, ConvergesFromNearbySystem) {
