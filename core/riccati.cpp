@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 
+#include "core/care_diagnosis.hpp"
 #include "core/error.hpp"
 #include "core/lapack.hpp"
 #include "core/lyapunov.hpp"
@@ -331,48 +332,13 @@ MatrixXd schur_solution(const ScaledHamiltonian& scaled_h, Eigen::VectorXcd& sta
   return scaled_h.unscale(lu.solve(U.bottomLeftCorner(n, n).transpose()).transpose());
 }
 
-// Which precondition of a stabilizing solution the data break, by the Popov–Belevitch–Hautus
-// tests: a mode of A with Re λ ≥ 0 that B cannot reach, or a mode on the imaginary axis that Q
-// does not see. "" when neither is found (then the equation is only too ill-conditioned). Run
-// only after a solve failed: it costs an eigensolver and one SVD per suspect mode.
-std::string broken_precondition(const MatrixRef& A, const MatrixRef& B, const MatrixRef& Q) {
-  const Index n = A.rows();
-  const double scale = std::max({1.0, A.norm(), B.norm(), Q.norm()});
-  const double tolerance = 100.0 * static_cast<double>(n) * kEps * scale;
-  const Eigen::VectorXcd modes = Eigen::EigenSolver<MatrixXd>(A, false).eigenvalues();
-  const auto smallest_singular_value = [](const Eigen::MatrixXcd& M) {
-    return Eigen::JacobiSVD<Eigen::MatrixXcd>(M).singularValues().minCoeff();
-  };
-  for (const std::complex<double> lambda : modes) {
-    const Eigen::MatrixXcd shifted = A.cast<std::complex<double>>() - lambda * Eigen::MatrixXcd::Identity(n, n);
-    const std::string mode = "λ = " + num(lambda.real()) + (lambda.imag() >= 0 ? "+" : "") + num(lambda.imag()) + "i";
-    if (lambda.real() >= -tolerance) {
-      Eigen::MatrixXcd reach(n, n + B.cols());
-      reach << shifted, B.cast<std::complex<double>>();
-      const double sigma = smallest_singular_value(reach);
-      if (sigma <= tolerance)
-        return "the pair (A, B) is not stabilizable: the mode " + mode + " of A is not controllable (σ_min[A − λI, B] = " +
-               num(sigma) + ")";
-    }
-    if (std::abs(lambda.real()) <= tolerance) {
-      Eigen::MatrixXcd see(2 * n, n);
-      see << shifted, Q.cast<std::complex<double>>();
-      const double sigma = smallest_singular_value(see);
-      if (sigma <= tolerance)
-        return "(Q, A) is not detectable: the mode " + mode + " of A on the imaginary axis is not seen by Q "
-               "(σ_min[A − λI; Q] = " + num(sigma) + ")";
-    }
-  }
-  return {};
-}
-
 // Runs `solve`; a failure gets the precondition the data break, when one is, in front.
 template <class Solve>
 CareResult diagnosed(const MatrixRef& A, const MatrixRef& B, const MatrixRef& Q, Solve&& solve) {
   try {
     return solve();
   } catch (const Error& error) {
-    const std::string broken = broken_precondition(A, B, Q);
+    const std::string broken = broken_care_precondition(A, B, Q);
     if (broken.empty()) throw;
     // The solver's own words, less the "CARE: " and the generic hint that `broken` now makes precise.
     std::string solver = std::string(error.what()).substr(6);

@@ -1,0 +1,19 @@
+#pragma once
+
+#include <string>
+
+#include <Eigen/Core>
+
+namespace thetad {
+
+// Which precondition of a stabilizing CARE solution the data break, by the Popov–Belevitch–Hautus
+// tests: a mode of A with Re λ ≥ 0 that B cannot reach ("the pair (A, B) is not stabilizable: the
+// mode λ = ... is not controllable (σ_min[A − λI, B] = ...)"), or a mode on the imaginary axis that
+// Q does not see ("(Q, A) is not detectable: ..."). "" when neither is found (then the equation is
+// only too ill-conditioned). For the failure path of a solve: it costs an eigensolver and one SVD
+// per suspect mode.
+std::string broken_care_precondition(const Eigen::Ref<const Eigen::MatrixXd>& A,
+                                     const Eigen::Ref<const Eigen::MatrixXd>& B,
+                                     const Eigen::Ref<const Eigen::MatrixXd>& Q);
+
+}  // namespace thetad
