@@ -59,9 +59,7 @@ const ControllerRegistry::Entry& ControllerRegistry::entry(const std::string& na
   for (const Entry& e : entries_) {
     if (e.name == name) return e;
   }
-  std::string known;
-  for (const auto& n : names()) known += (known.empty() ? "" : ", ") + n;
-  throw Error("unknown controller '" + name + "' (known: " + known + ")");
+  throw Error("unknown controller '" + name + "' (known: " + known_names() + ")");
 }
 
 std::unique_ptr<Controller> ControllerRegistry::make(const std::string& name, const YAML::Node& settings,
@@ -75,6 +73,16 @@ BuiltController ControllerRegistry::build(const std::string& name, const YAML::N
   const Settings fields(settings);
   std::unique_ptr<Controller> controller = found.factory(fields, context);
   return {std::move(controller), fields.resolved()};
+}
+
+bool ControllerRegistry::contains(const std::string& name) const {
+  return std::any_of(entries_.begin(), entries_.end(), [&](const Entry& e) { return e.name == name; });
+}
+
+std::string ControllerRegistry::known_names() const {
+  std::string known;
+  for (const auto& n : names()) known += (known.empty() ? "" : ", ") + n;
+  return known;
 }
 
 std::vector<std::string> ControllerRegistry::names() const {

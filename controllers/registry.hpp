@@ -72,6 +72,9 @@ class ControllerRegistry {
                                    const ControllerContext& context) const;
   BuiltController build(const std::string& name, const YAML::Node& settings, const ControllerContext& context) const;
   std::vector<std::string> names() const;
+  bool contains(const std::string& name) const;
+  // The names, sorted, comma separated: for "unknown controller" messages.
+  std::string known_names() const;
   const std::string& description(const std::string& name) const;
   // "built-in", or the origin of the OriginScope that `name` was registered in.
   const std::string& origin(const std::string& name) const;

@@ -13,22 +13,6 @@ namespace thetad {
 
 namespace {
 
-std::string known_controllers() {
-  std::string known;
-  for (const auto& name : ControllerRegistry::instance().names()) known += (known.empty() ? "" : ", ") + name;
-  return known;
-}
-
-std::string lower_case(std::string text) {
-  for (char& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return text;
-}
-
-bool registered(const std::string& name) {
-  const auto names = ControllerRegistry::instance().names();
-  return std::find(names.begin(), names.end(), name) != names.end();
-}
-
 // The YAML document of `file`; errors name the file, line and column.
 YAML::Node load_yaml(const std::filesystem::path& file) {
   const std::string text = read_text_file(file);
@@ -40,6 +24,11 @@ YAML::Node load_yaml(const std::filesystem::path& file) {
             << ": invalid YAML: " << error.msg;
     throw Error(message.str());
   }
+}
+
+std::string lower_case(std::string text) {
+  for (char& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return text;
 }
 
 // The block for `name` in a settings file; a null node when there is none.
@@ -56,8 +45,8 @@ YAML::Node load_settings_file(const std::filesystem::path& file) {
     throw SettingsError("settings", "expected a map from controller name to its settings", root.Mark(), file.string());
   for (const auto& item : root) {
     const std::string name = item.first.Scalar();
-    if (!registered(name))
-      throw SettingsError(name, "unknown controller (known: " + known_controllers() + ")", item.first.Mark(),
+    if (!ControllerRegistry::instance().contains(name))
+      throw SettingsError(name, "unknown controller (known: " + ControllerRegistry::instance().known_names() + ")", item.first.Mark(),
                           file.string());
   }
   return root;
@@ -105,8 +94,8 @@ ControllerSpec parse_controller_spec(const std::string& text, const YAML::Node& 
   }
   spec.controller = rest;
   if (spec.label.empty()) spec.label = spec.controller;
-  if (!registered(spec.controller))
-    throw Error("controller '" + text + "': unknown controller '" + spec.controller + "' (known: " + known_controllers() + ")");
+  if (!ControllerRegistry::instance().contains(spec.controller))
+    throw Error("controller '" + text + "': unknown controller '" + spec.controller + "' (known: " + ControllerRegistry::instance().known_names() + ")");
   check_label(spec.label);
   if (!file.empty()) {
     const YAML::Node settings = load_settings_file(file);
@@ -152,8 +141,8 @@ std::vector<ControllerSpec> read_controller_specs(const YAML::Node& list, const 
       if (!item.has("controller")) throw item.error("controller", "missing (required)");
       ControllerSpec spec;
       spec.controller = item.string("controller", "");
-      if (!registered(spec.controller))
-        throw item.error("controller", "unknown controller '" + spec.controller + "' (known: " + known_controllers() + ")");
+      if (!ControllerRegistry::instance().contains(spec.controller))
+        throw item.error("controller", "unknown controller '" + spec.controller + "' (known: " + ControllerRegistry::instance().known_names() + ")");
       spec.label = item.string("label", spec.controller);
       try {
         check_label(spec.label);

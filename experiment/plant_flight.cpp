@@ -1,12 +1,9 @@
 #include "experiment/plant_flight.hpp"
 
-#include <charconv>
-
 #include "controllers/registry.hpp"
 #include "core/error.hpp"
 #include "experiment/build_info.hpp"
 #include "experiment/result_json.hpp"
-#include "experiment/sha256.hpp"
 #include "settings/settings.hpp"
 
 namespace thetad {
@@ -29,19 +26,16 @@ RunFiles write_plant_run_files(const PlantFlightResult& result, const std::strin
   LogWriter write_log;
   if (result.simulation.keep_log) {
     write_log = [&](std::ostream& out) {
-      std::string text = "t_s";
-      for (Eigen::Index i = 0; i < n; ++i) text += ",x_" + std::to_string(i);
-      for (Eigen::Index j = 0; j < m; ++j) text += ",u_" + std::to_string(j);
-      text += '\n';
-      char number[32];
-      for (Eigen::Index r = 0; r < log.rows(); ++r)
-        for (Eigen::Index c = 0; c < log.cols(); ++c) {
-          const auto [end, status] = std::to_chars(number, number + sizeof number, log(r, c));
-          text.append(number, end);
-          text += c + 1 == log.cols() ? '\n' : ',';
-        }
-      out << text;
-      return LogFile{{}, sha256_hex(text), log.rows()};
+      std::string header = "t_s";
+      for (Eigen::Index i = 0; i < n; ++i) header += ",x_" + std::to_string(i);
+      for (Eigen::Index j = 0; j < m; ++j) header += ",u_" + std::to_string(j);
+      CsvStream csv(out, header);
+      Eigen::VectorXd row(log.cols());
+      for (Eigen::Index r = 0; r < log.rows(); ++r) {
+        row = log.row(r).transpose();
+        csv.row(row.data(), static_cast<std::size_t>(row.size()));
+      }
+      return csv.finish();
     };
   }
   return write_result_files(folder, result.spec.label, write_log, [&](const LogFile* file) {

@@ -33,28 +33,12 @@ std::string header_line(const std::vector<sim::LogColumn>& columns) {
   return header;
 }
 
-// Writes the log as CSV into `out` and returns the SHA-256 of what it wrote. Shortest round-trip
-// text: exact, and the same bytes for the same double on every run.
-std::string write_csv(const sim::RunLog& log, bool timing, std::ostream& out) {
-  Sha256 digest;
-  std::string chunk = header_line(log_columns(timing)) + "\n";
+// Writes the log as CSV into `out` (the wall-clock column only with timing).
+LogFile write_csv(const sim::RunLog& log, bool timing, std::ostream& out) {
+  CsvStream csv(out, header_line(log_columns(timing)));
   const std::size_t schema = sim::log_schema().size(), written = log_columns(timing).size();
-  char number[32];
-  const auto flush = [&] {
-    digest.update(chunk);
-    out.write(chunk.data(), static_cast<std::streamsize>(chunk.size()));
-    chunk.clear();
-  };
-  for (std::size_t i = 0; i < log.values.size(); ++i) {
-    const std::size_t column = i % schema;
-    if (column >= written) continue;
-    const auto [end, status] = std::to_chars(number, number + sizeof number, log.values[i]);
-    chunk.append(number, end);
-    chunk.push_back(column + 1 == written ? '\n' : ',');
-    if (chunk.size() > (1u << 20)) flush();
-  }
-  flush();
-  return digest.hex();
+  for (std::size_t i = 0; i < log.values.size(); i += schema) csv.row(log.values.data() + i, written);
+  return csv.finish();
 }
 
 // The CSV's header must name `columns` in order; the error names the first difference, so that a
@@ -101,6 +85,30 @@ std::vector<sim::LogColumn> log_columns(bool timing) {
   std::vector<sim::LogColumn> columns = sim::log_schema();
   if (!timing) columns.pop_back();  // the schema ends with the control step's wall time
   return columns;
+}
+
+CsvStream::CsvStream(std::ostream& out, const std::string& header) : out_(out), chunk_(header + "\n") {}
+
+void CsvStream::row(const double* values, std::size_t count) {
+  char number[32];
+  for (std::size_t c = 0; c < count; ++c) {
+    const auto [end, status] = std::to_chars(number, number + sizeof number, values[c]);
+    chunk_.append(number, end);
+    chunk_.push_back(c + 1 == count ? '\n' : ',');
+  }
+  ++rows_;
+  if (chunk_.size() > (1u << 20)) flush();
+}
+
+void CsvStream::flush() {
+  digest_.update(chunk_);
+  out_.write(chunk_.data(), static_cast<std::streamsize>(chunk_.size()));
+  chunk_.clear();
+}
+
+LogFile CsvStream::finish() {
+  flush();
+  return {{}, digest_.hex(), rows_};
 }
 
 void prepare_output_folder(const fs::path& folder) {
@@ -153,7 +161,7 @@ RunFiles write_run_files(const RunResult& result, const fs::path& folder) {
   const bool timing = result.summary.settings.measure_compute_time;
   LogWriter write_log;
   if (result.summary.settings.keep_log)
-    write_log = [&](std::ostream& out) { return LogFile{{}, write_csv(result.log, timing, out), result.log.rows()}; };
+    write_log = [&](std::ostream& out) { return write_csv(result.log, timing, out); };
   return write_result_files(folder, result.spec.label, write_log,
                             [&](const LogFile* log) { return result_json(result, log); });
 }

@@ -11,6 +11,7 @@
 #include "core/sim/simulator.hpp"
 #include "experiment/result_json.hpp"
 #include "experiment/run_result.hpp"
+#include "experiment/sha256.hpp"
 
 namespace thetad {
 
@@ -21,6 +22,23 @@ std::vector<sim::LogColumn> log_columns(bool timing);
 // Creates `folder` if needed and checks that a file can be written in it, so that a typo or a
 // read-only folder is found before a flight, not after. Throws thetad::Error naming the folder.
 void prepare_output_folder(const std::filesystem::path& folder);
+
+// A CSV streamed into `out` row by row, in 1 MiB chunks, with the SHA-256 of what was written:
+// shortest round-trip numbers, exact and the same bytes for the same doubles on every run.
+class CsvStream {
+ public:
+  CsvStream(std::ostream& out, const std::string& header);
+  void row(const double* values, std::size_t count);
+  // Flushes and returns the file's digest and row count (the file name is the caller's).
+  LogFile finish();
+
+ private:
+  void flush();
+  std::ostream& out_;
+  Sha256 digest_;
+  std::string chunk_;
+  long long rows_ = 0;
+};
 
 struct RunFiles {
   std::filesystem::path csv;  // empty for a summary-only run
