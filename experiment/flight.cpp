@@ -61,14 +61,15 @@ PreparedController Flight::prepare(const ControllerSpec& spec) const {
   const ControllerContext context(model_, scenario_.initial_state, 0.0);
   auto build = [&] { return ControllerRegistry::instance().build(spec.controller, spec.settings, context); };
   BuiltController built = spec.settings_source.empty() ? build() : with_settings_source(spec.settings_source, build);
-  return {spec, std::move(built.controller), built.settings};
+  return {spec, std::move(built.controller), built.settings, {}};
 }
 
 RunResult Flight::fly(PreparedController& prepared, Progress* progress, const std::string& heading) const {
   RunResult result;
   result.spec = prepared.spec;
   result.settings = prepared.settings;
-  result.controller_origin = ControllerRegistry::instance().origin(prepared.spec.controller);
+  result.controller_origin =
+      prepared.origin.empty() ? ControllerRegistry::instance().origin(prepared.spec.controller) : prepared.origin;
   result.provenance = provenance_;
   if (settings_.measure_compute_time) stamp_host_and_time(result.provenance);
   if (progress) progress->start(heading.empty() ? prepared.spec.label + ":" : heading, settings_.duration);

@@ -22,6 +22,9 @@ struct PreparedController {
   ControllerSpec spec;
   std::unique_ptr<Controller> controller;
   YAML::Node settings;
+  // Where the controller comes from, for a controller the registry does not build (a Python
+  // class); empty: the registry's record of spec.controller ("built-in", a plug-in).
+  std::string origin;
 };
 
 // A scenario read and ready to fly, with the controllers' model: the one place where a scenario,

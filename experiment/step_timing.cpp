@@ -108,7 +108,7 @@ RecordedSamples record_samples(const Flight& flight, PreparedController& prepare
   RecordedSamples samples;
   samples.recorded_with = prepared.spec.label;
   PreparedController recorder{prepared.spec, std::make_unique<SampleRecorder>(prepared.controller->clone(), samples),
-                              prepared.settings};
+                              prepared.settings, prepared.origin};
   const RunResult run = flight.fly(recorder, progress, "recording with " + prepared.spec.label + ":");
   if (!run.completed()) samples.diverged = run.summary.reason;
   if (samples.size() == 0)

@@ -78,7 +78,7 @@ TuningRecord record_sdre_flight(const Flight& flight, const SdreController& sdre
                                 Progress* progress) {
   const sim::SimulationSettings& settings = flight.settings();
   const auto samples = static_cast<Eigen::Index>(std::llround(settings.duration / settings.controller_period()));
-  PreparedController prepared{{"sdre-record", "sdre", {}, {}}, std::make_unique<SdreRecorder>(sdre, every, samples), {}};
+  PreparedController prepared{{"sdre-record", "sdre", {}, {}}, std::make_unique<SdreRecorder>(sdre, every, samples), {}, {}};
   const RunResult run = flight.fly(prepared, progress, "sdre (record):");
   if (!run.completed())
     throw Error("tuning: the SDRE flight of " + flight.scenario().name + " diverged (" + run.summary.reason +

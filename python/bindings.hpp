@@ -1,0 +1,15 @@
+#pragma once
+
+// The parts of the thetad module, one binding function per file, called by module.cpp in order
+// (later parts use the classes earlier ones register).
+
+#include <pybind11/pybind11.h>
+
+namespace thetad::python {
+
+void bind_numerics(pybind11::module_& module);     // numerics.cpp: care, lqr, lyap
+void bind_model(pybind11::module_& module);        // model.cpp: Helicopter, trim, names
+void bind_controllers(pybind11::module_& module);  // controllers.cpp: Controller, controller()
+void bind_flights(pybind11::module_& module);      // flights.cpp: run, compare, RunResult
+
+}  // namespace thetad::python

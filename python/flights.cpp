@@ -1,0 +1,180 @@
+// thetad.run and thetad.compare: flights through the experiment library (experiment/flight.hpp),
+// with the GIL released while the simulator flies.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include "experiment/comparison.hpp"
+#include "experiment/run_files.hpp"
+#include "python/bindings.hpp"
+#include "python/python_controller.hpp"
+#include "python/values.hpp"
+
+namespace thetad::python {
+
+namespace {
+
+// The run controls of docs/python.md, as keywords: the command line's --seed, --duration, ...
+RunControls run_controls(const py::kwargs& keywords) {
+  RunControls controls;
+  const auto flag = [](py::handle value) { return value.cast<bool>(); };
+  for (const auto& [key, value] : keywords) {
+    const std::string name = key.cast<std::string>();
+    if (name == "seed") controls.seed = value.cast<std::uint64_t>();
+    else if (name == "duration") controls.duration = value.cast<double>();
+    else if (name == "dt") controls.dt = value.cast<double>();
+    else if (name == "log_every") controls.log_every = value.cast<int>();
+    else if (name == "summary_only") controls.summary_only = flag(value);
+    else if (name == "timing") controls.timing = flag(value);
+    else if (name == "ideal") controls.ideal = flag(value);
+    else if (name == "parameter_uncertainty") controls.parameter_uncertainty = flag(value);
+    else if (name == "wind_gust") controls.wind_gust = flag(value);
+    else if (name == "measurement_noise") controls.measurement_noise = flag(value);
+    else if (name == "actuator_noise") controls.actuator_noise = flag(value);
+    else if (name == "wind_noise") controls.wind_noise = flag(value);
+    else if (name == "induced_velocity_noise") controls.induced_velocity_noise = flag(value);
+    else
+      throw py::type_error("unknown run control '" + name +
+                           "' (seed, duration, dt, log_every, summary_only, timing, ideal, parameter_uncertainty, "
+                           "wind_gust, measurement_noise, actuator_noise, wind_noise, induced_velocity_noise)");
+  }
+  return controls;
+}
+
+// One controller of a run as the caller gave it: a spec (a name, or thetad.controller()'s, built
+// again for the flight), or a Python controller flown as the object itself.
+struct Entry {
+  std::optional<ControllerSpec> spec;
+  std::optional<PreparedController> python;
+};
+
+Entry entry_of(py::handle controller) {
+  Entry entry;
+  if (py::isinstance<py::str>(controller)) {
+    entry.spec = parse_controller_spec(controller.cast<std::string>());
+  } else if (py::isinstance<RegisteredController>(controller)) {
+    entry.spec = controller.cast<const RegisteredController&>().spec();
+  } else if (py::isinstance<Controller>(controller)) {
+    auto borrowed = std::make_unique<BorrowedController>(py::reinterpret_borrow<py::object>(controller));
+    const std::string type = py::str(py::type::of(controller).attr("__qualname__")).cast<std::string>();
+    const std::string module = py::str(py::type::of(controller).attr("__module__")).cast<std::string>();
+    ControllerSpec spec{borrowed->name(), "python:" + type, {}, {}};
+    entry.python = PreparedController{spec, std::move(borrowed), {}, "python class " + module + "." + type};
+  } else {
+    throw py::type_error("controller: expected a registered controller's name (str), thetad.controller(...) or a "
+                         "thetad.Controller subclass instance, got " +
+                         py::str(py::type::of(controller).attr("__name__")).cast<std::string>());
+  }
+  return entry;
+}
+
+ControllerSpec& spec_of(Entry& entry) { return entry.spec ? *entry.spec : entry.python->spec; }
+
+PreparedController prepare(const Flight& flight, Entry& entry) {
+  return entry.spec ? flight.prepare(*entry.spec) : std::move(*entry.python);
+}
+
+// The log as a (rows, columns) view of the result's memory, without the wall-clock column when
+// the run measured no time (the columns of the CSV).
+py::array log_array(py::object self) {
+  const RunResult& result = self.cast<const RunResult&>();
+  const auto schema = static_cast<py::ssize_t>(sim::log_schema().size());
+  const auto columns = static_cast<py::ssize_t>(log_columns(result.summary.settings.measure_compute_time).size());
+  const auto rows = static_cast<py::ssize_t>(result.log.rows());
+  const auto item = static_cast<py::ssize_t>(sizeof(double));
+  py::array view(py::dtype::of<double>(), {rows, columns}, {schema * item, item}, result.log.values.data(), self);
+  py::detail::array_proxy(view.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+  return view;
+}
+
+std::vector<std::string> column_headers(const RunResult& result) {
+  std::vector<std::string> headers;
+  for (const auto& column : log_columns(result.summary.settings.measure_compute_time)) headers.push_back(column.header());
+  return headers;
+}
+
+}  // namespace
+
+void bind_flights(py::module_& module) {
+  py::class_<RunResult>(module, "RunResult",
+                        "One flight: summary, settings, provenance and (unless summary_only) the log")
+      .def_property_readonly("label", [](const RunResult& r) { return r.spec.label; })
+      .def_property_readonly("controller", [](const RunResult& r) { return r.spec.controller; })
+      .def_property_readonly("origin", [](const RunResult& r) { return r.controller_origin; })
+      .def_property_readonly("completed", &RunResult::completed)
+      .def_property_readonly("status", [](const RunResult& r) { return status_text(r.summary); })
+      .def_property_readonly("reason", [](const RunResult& r) { return r.summary.reason; })
+      .def_property_readonly("summary", [](const RunResult& r) { return to_python(summary_json(r.summary)); })
+      .def_property_readonly("settings", [](const RunResult& r) { return to_python(yaml_to_json(r.settings)); })
+      .def_property_readonly("provenance", [](const RunResult& r) { return to_python(to_json(r.provenance)); })
+      .def_property_readonly("wall_seconds", [](const RunResult& r) { return r.wall_seconds; })
+      .def_property_readonly("columns", &column_headers, "the log's columns, NAME_UNIT as in the CSV header")
+      .def_property_readonly("log", &log_array, "the log, (rows, columns), read-only, no copy; empty when summary_only")
+      .def(
+          "frame",
+          [](py::object self) {
+            return py::module_::import("pandas").attr("DataFrame")(log_array(self), py::arg("columns") = column_headers(self.cast<const RunResult&>()));
+          },
+          "the log as a pandas.DataFrame, columns as in the CSV (NAME_UNIT)")
+      .def(
+          "json", [](const RunResult& r) { return to_python(result_json(r, nullptr)); },
+          "the result file's content (format thetad-run-1) without the log's file")
+      .def(
+          "write",
+          [](const RunResult& r, const std::string& folder) {
+            const RunFiles files = write_run_files(r, folder);
+            return py::make_tuple(files.json.string(), files.csv.empty() ? py::object(py::none()) : py::str(files.csv.string()));
+          },
+          py::arg("folder"), "writes LABEL.json and LABEL.csv as `thetad run` does; returns their paths")
+      .def("__repr__", [](const RunResult& r) { return "RunResult(" + r.spec.label + ": " + status_text(r.summary) + ")"; });
+
+  module.def(
+      "run",
+      [](const std::string& scenario, py::handle controller, std::optional<std::string> label, const py::kwargs& controls) {
+        const RunControls parsed = run_controls(controls);
+        Entry entry = entry_of(controller);
+        if (label) spec_of(entry).label = *label;
+        check_label(spec_of(entry).label);
+        PreparedController prepared;  // released with the GIL held (a Python controller's reference)
+        py::gil_scoped_release unlocked;
+        const Flight flight(scenario, parsed);
+        prepared = prepare(flight, entry);
+        return flight.fly(prepared);
+      },
+      py::arg("scenario"), py::arg("controller"), py::kw_only(), py::arg("label") = py::none(),
+      "Flies `controller` (a registered name or spec string, thetad.controller(...), or a thetad.Controller "
+      "subclass instance) through `scenario` (a file or a shipped scenario's name). Run controls as keywords: "
+      "seed, duration, dt, log_every, summary_only, timing, ideal and the disturbance switches.");
+
+  module.def(
+      "compare",
+      [](const std::string& scenario, const py::sequence& controllers, const py::kwargs& controls) {
+        const RunControls parsed = run_controls(controls);
+        std::vector<Entry> entries;
+        std::vector<ControllerSpec> specs;
+        for (const py::handle controller : controllers) {
+          entries.push_back(entry_of(controller));
+          specs.push_back(spec_of(entries.back()));
+        }
+        check_labels(specs);
+        std::vector<PreparedController> prepared;
+        std::vector<RunResult> results;
+        py::gil_scoped_release unlocked;
+        const Flight flight(scenario, parsed);
+        for (Entry& entry : entries) prepared.push_back(prepare(flight, entry));
+        for (PreparedController& controller : prepared) results.push_back(flight.fly(controller));
+        return results;
+      },
+      py::arg("scenario"), py::arg("controllers"),
+      "The same flight (same seed: same perturbed plant and noise) for each controller, in order: a list of "
+      "RunResult. Labels must differ ('paper=theta-d', thetad.controller(..., label=...)).");
+
+  module.def("comparison_table", &comparison_table, py::arg("results"),
+             "The table `thetad compare` prints, for a list of RunResult");
+}
+
+}  // namespace thetad::python

@@ -1,0 +1,78 @@
+"""thetad.run: the result, its log as numpy and pandas with the CSV's columns, reproducibility."""
+
+import csv
+import json
+import os
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import thetad
+
+
+@pytest.fixture(scope="module")
+def flown():
+    return thetad.run("scenario-1", "theta-d", seed=4, duration=0.5, timing=False)
+
+
+def test_the_result_says_what_flew(flown):
+    assert flown.completed and flown.status == "completed" and flown.reason == ""
+    assert (flown.label, flown.controller, flown.origin) == ("theta-d", "theta-d", "built-in")
+    assert flown.summary["controller_samples"] == 500
+    assert flown.provenance["seed"] == 4 and flown.provenance["scenario"]["name"] == "scenario-1"
+    assert flown.settings["terms"] == 3
+    document = flown.json()
+    assert document["format"] == "thetad-run-1" and document["label"] == "theta-d" and document["log"] is None
+
+
+def test_the_log_as_numpy_and_pandas_has_the_csv_columns(flown, tmp_path):
+    assert flown.log.shape == (500, len(flown.columns))
+    assert flown.columns[:4] == ["t_s", "x_c_m", "y_c_m", "z_c_m"] and "compute_ns" not in flown.columns
+    assert not flown.log.flags.writeable
+    frame = flown.frame()
+    assert isinstance(frame, pd.DataFrame) and list(frame.columns) == flown.columns
+    np.testing.assert_array_equal(frame["t_s"].to_numpy(), np.arange(500) * 1e-3)
+    json_file, csv_file = flown.write(str(tmp_path))
+    with open(csv_file) as stream:
+        rows = list(csv.reader(stream))
+    assert rows[0] == flown.columns
+    np.testing.assert_array_equal(np.array(rows[1:], dtype=float), flown.log)
+    with open(json_file) as stream:
+        document = json.load(stream)
+    assert document["label"] == "theta-d" and document["log"]["csv"] == os.path.basename(csv_file)
+    assert document["log"]["rows"] == 500
+
+
+def test_same_seed_same_result_bit_for_bit(flown):
+    again = thetad.run("scenario-1", "theta-d", seed=4, duration=0.5, timing=False)
+    np.testing.assert_array_equal(again.log, flown.log)
+    other = thetad.run("scenario-1", "theta-d", seed=5, duration=0.5, timing=False)
+    assert not np.array_equal(other.log, flown.log)
+
+
+def test_summary_only_keeps_no_log():
+    result = thetad.run("scenario-1", "lqr", duration=0.2, summary_only=True)
+    assert result.log.shape == (0, len(result.columns)) and result.frame().empty
+    assert "compute_ns" in result.columns  # with timing, as the CSV would have
+
+
+def test_a_registered_controller_object_flies_as_its_spec():
+    tuned = thetad.controller("tuned=theta-d", k=[0.5, 2.0], l=[0.1, 0.2])
+    result = thetad.run("hover-step", tuned, duration=0.2, summary_only=True, timing=False)
+    assert result.label == "tuned" and result.settings["k"] == [0.5, 2.0]
+
+
+def test_bad_calls_raise():
+    with pytest.raises(thetad.Error, match="scenario 'no-such-scenario'"):
+        thetad.run("no-such-scenario", "lqr")
+    with pytest.raises(thetad.Error, match="unknown controller"):
+        thetad.run("scenario-1", "no-such-controller", duration=0.1)
+    with pytest.raises(TypeError, match="unknown run control 'seeds'"):
+        thetad.run("scenario-1", "lqr", seeds=3)
+    with pytest.raises(thetad.Error, match="duration"):
+        thetad.run("scenario-1", "lqr", duration=-1.0)
+    with pytest.raises(TypeError, match="controller: expected"):
+        thetad.run("scenario-1", 42)
+    with pytest.raises(thetad.Error, match="label"):
+        thetad.run("scenario-1", "lqr", label="bad label/")
