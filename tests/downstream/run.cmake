@@ -69,3 +69,28 @@ execute_process(COMMAND ${WORK_DIR}/prefix/bin/thetad --plugin ${WORK_DIR}/plugi
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "the installed thetad did not fly the out-of-tree plug-in (${rc}):\n${output}${errors}")
 endif()
+
+# The installed Python package, from the prefix alone: PYTHONPATH names its folder (docs/python.md),
+# and it flies the installed scenario by name.
+if(PYTHON)
+  execute_process(COMMAND ${CMAKE_COMMAND} -E env PYTHONPATH=${WORK_DIR}/prefix/${PYTHON_PACKAGE_DIR} PYTHONDONTWRITEBYTECODE=1
+      ${PYTHON} -c "import thetad; r = thetad.run('scenario-1', 'theta-d', duration=0.2, summary_only=True); print(thetad.__file__); print(r.provenance['scenario']['file']); print(r.status)"
+    RESULT_VARIABLE rc OUTPUT_VARIABLE output ERROR_VARIABLE errors OUTPUT_STRIP_TRAILING_WHITESPACE)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "the installed thetad Python package failed (${rc}):\n${output}${errors}")
+  endif()
+  string(REPLACE "\n" ";" lines "${output}")
+  list(GET lines 0 module)
+  list(GET lines 1 flown)
+  list(GET lines 2 status)
+  file(REAL_PATH ${WORK_DIR}/prefix prefix)
+  file(REAL_PATH ${module} module)
+  string(FIND "${module}" "${prefix}/${PYTHON_PACKAGE_DIR}/thetad/" found)
+  if(NOT found EQUAL 0)
+    message(FATAL_ERROR "python imported ${module}, not the installed package under ${prefix}/${PYTHON_PACKAGE_DIR}")
+  endif()
+  file(REAL_PATH ${flown} flown)
+  if(NOT flown STREQUAL installed_scenario OR NOT status STREQUAL "completed")
+    message(FATAL_ERROR "the installed Python package flew ${flown} (${status}), not the installed ${installed_scenario}")
+  endif()
+endif()
