@@ -29,24 +29,28 @@ def pooled():
 
 
 def timed(run):
-    start = time.perf_counter()
+    """Wall seconds, the process's CPU seconds per wall second (how many cores it got), results."""
+    start, cpu = time.perf_counter(), time.process_time()
     results = run()
-    return time.perf_counter() - start, results
+    wall = time.perf_counter() - start
+    return wall, (time.process_time() - cpu) / wall, results
 
 
 def test_eight_flights_on_two_threads_run_at_least_one_and_a_half_times_faster():
     fly(0)  # warm: the scenario file and the shared libraries
-    one_by_one, in_pool = [], []
+    one_by_one, in_pool, cores = [], [], []
     for _ in range(REPETITIONS):
-        seconds, reference = timed(sequential)
+        seconds, _, reference = timed(sequential)
         one_by_one.append(seconds)
-        seconds, results = timed(pooled)
+        seconds, used, results = timed(pooled)
         in_pool.append(seconds)
+        cores.append(used)
         # The same flights, whichever thread flew them.
         assert [r.summary["cost"] for r in results] == [r.summary["cost"] for r in reference]
     speedup = min(one_by_one) / min(in_pool)
-    print(f"8 flights: one by one {min(one_by_one):.3f} s, {WORKERS} threads {min(in_pool):.3f} s: {speedup:.2f}x")
-    assert speedup >= 1.5
+    # When this fails, the cores the pooled runs got say whether the host had a second core to give.
+    assert speedup >= 1.5, (f"8 flights: one by one {min(one_by_one):.3f} s, {WORKERS} threads {min(in_pool):.3f} s "
+                            f"({speedup:.2f}x); the pooled runs got {max(cores):.2f} cores at best")
 
 
 def test_python_runs_while_a_flight_flies():
