@@ -82,21 +82,23 @@ void bind_controllers(py::module_& module) {
           },
           py::arg("t"), py::arg("x"), py::arg("reference"),
           "u (5,) for the measured state x (18,) at time t; reference: a thetad.Reference or a position (3,)")
-      .def("counters", [](const Controller& controller) {
-        py::dict counters;
-        for (const auto& [name, value] : controller.counters()) counters[py::str(name)] = value;
-        return counters;
-      });
+      .def("counters",
+           [](const Controller& controller) {
+             py::dict counters;
+             for (const auto& [name, value] : controller.counters()) counters[py::str(name)] = value;
+             return counters;
+           })
+      .def(
+          "clone", [](const Controller& controller) { return std::shared_ptr<Controller>(controller.clone()); },
+          "A copy: independent for a registered controller; for a Python class its own clone() when it defines "
+          "one, else a second handle on the same object (docs/python.md)");
 
   py::class_<RegisteredController, Controller, std::shared_ptr<RegisteredController>>(
       module, "RegisteredController", "A registered controller built by thetad.controller()")
       .def_property_readonly("label", [](const RegisteredController& c) { return c.spec().label; })
       .def_property_readonly("controller", [](const RegisteredController& c) { return c.spec().controller; })
       .def_property_readonly("settings", [](const RegisteredController& c) { return to_python(yaml_to_json(c.settings())); },
-                             "every setting as used, defaults included")
-      .def("clone", [](const RegisteredController& c) {
-        return std::shared_ptr<Controller>(c.clone());
-      }, "an independent copy (its own state)");
+                             "every setting as used, defaults included");
 
   module.def(
       "controller",

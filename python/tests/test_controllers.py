@@ -119,6 +119,41 @@ def test_a_bad_python_result_ends_the_run_as_failed(u, reason):
     assert reason in result.reason
 
 
+class Counter(thetad.Controller):
+    def __init__(self):
+        super().__init__()
+        self.calls = 0
+
+    def compute(self, t, x, reference):
+        self.calls += 1
+        return [80.0, 0.0, 0.0, 0.0, 0.0]
+
+
+class CopyableCounter(Counter):
+    def clone(self):
+        return CopyableCounter()
+
+
+def test_clone_of_a_python_controller(hover_trim):
+    x, position = hover_trim.state, hover_trim.state[:3]
+    # Without a clone() of its own: a second handle on the same object, which it keeps alive.
+    original = Counter()
+    handle = original.clone()
+    assert isinstance(handle, thetad.Controller) and handle.name() == "Counter"
+    handle.compute(0.0, x, position)  # through C++ into the original's compute
+    assert original.calls == 1
+    orphan = Counter().clone()  # the only reference to its Counter is the handle's
+    orphan.compute(0.0, x, position)
+    # A clone flies as its original does.
+    result = thetad.run("hover-step", handle, label="handle", duration=0.01, summary_only=True)
+    assert result.completed and original.calls == 1 + 10
+    # With one: the C++ clone() calls it and the copy is independent.
+    copyable = CopyableCounter()
+    copy = thetad.Controller.clone(copyable)
+    copy.compute(0.0, x, position)
+    assert copyable.calls == 0
+
+
 def test_a_controller_without_compute_fails_its_run():
     result = thetad.run("hover-step", thetad.Controller(), label="bare", duration=0.1, summary_only=True)
     assert not result.completed and "does not define compute" in result.reason
