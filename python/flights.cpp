@@ -117,9 +117,11 @@ void bind_flights(py::module_& module) {
       .def(
           "frame",
           [](py::object self) {
-            return py::module_::import("pandas").attr("DataFrame")(log_array(self), py::arg("columns") = column_headers(self.cast<const RunResult&>()));
+            // A copy: a frame is for editing, and pandas would otherwise share the read-only log.
+            return py::module_::import("pandas").attr("DataFrame")(
+                log_array(self), py::arg("columns") = column_headers(self.cast<const RunResult&>()), py::arg("copy") = true);
           },
-          "the log as a pandas.DataFrame, columns as in the CSV (NAME_UNIT)")
+          "the log as a pandas.DataFrame (a copy), columns as in the CSV (NAME_UNIT)")
       .def(
           "json", [](const RunResult& r) { return to_python(result_json(r, nullptr)); },
           "the result file's content (format thetad-run-1) without the log's file")

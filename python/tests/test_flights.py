@@ -33,6 +33,8 @@ def test_the_log_as_numpy_and_pandas_has_the_csv_columns(flown, tmp_path):
     frame = flown.frame()
     assert isinstance(frame, pd.DataFrame) and list(frame.columns) == flown.columns
     np.testing.assert_array_equal(frame["t_s"].to_numpy(), np.arange(500) * 1e-3)
+    frame.loc[0, "x_p_m"] = 1.0  # the frame is the user's copy; the result's log stays as flown
+    assert flown.log[0, flown.columns.index("x_p_m")] == 0.0
     json_file, csv_file = flown.write(str(tmp_path))
     with open(csv_file) as stream:
         rows = list(csv.reader(stream))
