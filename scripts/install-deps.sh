@@ -12,7 +12,7 @@ packages=(
   libbenchmark-dev
   liblapack-dev liblapacke-dev libslicot-dev
   libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libssl-dev
-  python3-matplotlib python3-scipy python3-mpmath
+  python3-matplotlib python3-scipy python3-mpmath python3-pandas python3-pytest
 )
 
 missing=()

@@ -51,13 +51,20 @@ struct Inputs {
 };
 
 // The runs of a folder, each checked against its result file (read_result_folder); every run must
-// have a log to draw.
-Inputs read_inputs(const fs::path& in) {
+// have a log to draw, and `baseline`, if given, must be one of them.
+Inputs read_inputs(const fs::path& in, const std::string& baseline) {
   if (!fs::is_directory(in)) throw Error("--in " + in.string() + ": no such directory");
   Inputs inputs{{}, read_result_folder(in)};
   for (const StoredRun& run : inputs.runs) {
     if (run.csv_file.empty())
       throw Error(run.json_file.string() + ": run '" + run.label + "' has no log to draw (flown --summary-only)");
+  }
+  if (!baseline.empty() && std::none_of(inputs.runs.begin(), inputs.runs.end(),
+                                        [&](const StoredRun& run) { return run.label == baseline; })) {
+    std::string message = "--baseline ";
+    message.append(baseline).append(": no run of ").append(in.string()).append(" has that label (runs:");
+    for (const StoredRun& run : inputs.runs) message.append(" ").append(run.label);
+    throw Error(message.append(")"));
   }
   const ordered_json& first = inputs.runs.front().result;
   inputs.title = first.at("provenance").at("scenario").at("name").get<std::string>() + " (seed " +
@@ -71,6 +78,7 @@ std::string manifest(const Inputs& inputs, const PlotArguments& arguments, const
   j["out"] = fs::absolute(staging).string();
   j["formats"] = arguments.formats;
   j["dpi"] = arguments.dpi;
+  j["baseline"] = arguments.baseline;
   j["schema"] = ordered_json::array();
   for (const auto& column : sim::log_schema()) j["schema"].push_back({{"name", column.name}, {"unit", column.unit}});
   j["runs"] = ordered_json::array();
@@ -149,18 +157,22 @@ CLI::App* add_plot_command(CLI::App& app, PlotArguments& arguments) {
   plot->add_option("--in", arguments.in, "Directory written by thetad compare (or thetad run)")->required();
   plot->add_option("--out", arguments.out, "Directory for the figures (created; existing files are replaced)")
       ->required();
-  plot->add_option("--formats", arguments.formats, "Comma-separated file formats")
+  plot->add_option("--format,--formats", arguments.formats, "Comma-separated file formats (png, svg, pdf)")
       ->delimiter(',')
       ->check(CLI::IsMember({"png", "svg", "pdf"}))
       ->capture_default_str();
-  plot->add_option("--dpi", arguments.dpi, "Resolution of raster formats")->check(CLI::Range(30, 600))->capture_default_str();
+  plot->add_option("--dpi", arguments.dpi, "Resolution of raster formats (the figures are 8.5 or 17.6 cm wide)")
+      ->check(CLI::Range(30, 600))
+      ->capture_default_str();
+  plot->add_option("--baseline", arguments.baseline,
+                   "Label of the run the difference panels (Euler angles) compare with; default: the first run");
   arguments.script = default_plot_script();
   plot->add_option("--script", arguments.script, "The plotting script")->capture_default_str();
   return plot;
 }
 
 int run_plot(const PlotArguments& arguments) {
-  const Inputs inputs = read_inputs(arguments.in);
+  const Inputs inputs = read_inputs(arguments.in, arguments.baseline);
   const fs::path& script = arguments.script;
   if (!fs::is_regular_file(script)) throw Error("plot script " + script.string() + " not found (see --script)");
   const char* python_variable = std::getenv("THETAD_PYTHON");
