@@ -80,7 +80,7 @@ def title(figure, runs, kind, what):
 
 def columns(entries):
     """Legend columns that fill the rows evenly at column width."""
-    return 2 if entries in (2, 4) else 3
+    return 3 if entries % 3 == 0 else 2
 
 
 def legend(ax, runs, extra=()):
@@ -253,7 +253,7 @@ def draw_compute_time(runs):
     """Median per window of the control() wall time with its 5–95 % band, log axis, and the
     budget one controller period leaves."""
     unit, factor = runs.display("compute")
-    fig, ax = plt.subplots(figsize=style.size(style.COLUMN, 0.62))
+    fig, ax = plt.subplots(figsize=style.size(style.COLUMN, 0.8))
     measured = [run for run in runs.runs if np.any(run.data["compute"] > 0)]
     for run in measured:
         rank = runs.labels.index(run.label)
@@ -271,7 +271,7 @@ def draw_compute_time(runs):
         budget = ax.axhline(period * 1e6, color="black", linewidth=0.9, linestyle=(0, (4, 2)))
         ax.set_yscale("log")
         legend(ax, type(runs)(**{**runs.__dict__, "runs": measured}),
-               [(budget, f"budget {1 / period:g} Hz ({period * 1e6:g} µs)")])
+               [(budget, f"budget at {1e-3 / period:g} kHz ({period * 1e6:g} µs)")])
     else:
         ax.text(0.5, 0.5, "compute time not measured in these runs", transform=ax.transAxes, ha="center")
     ax.set_xlabel("time t (s)")

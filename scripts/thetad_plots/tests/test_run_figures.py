@@ -169,5 +169,5 @@ def test_compute_time_marks_the_budget_on_a_log_axis(figures):
     ax = figures["compute_time"].axes[0]
     assert ax.get_yscale() == "log"
     assert ax.get_ylabel() == "control() wall time (µs)"
-    assert "budget 1000 Hz (1000 µs)" in all_text(figures["compute_time"])
+    assert "budget at 1 kHz (1000 µs)" in all_text(figures["compute_time"])
     assert named_lines(ax)[:len(LABELS)] == LABELS
