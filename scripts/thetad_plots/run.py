@@ -5,6 +5,7 @@ Each `draw_*` function returns a matplotlib Figure (tests inspect it); `draw_all
 and `main` saves them where a `thetad plot` manifest says (results.py describes it).
 """
 
+import dataclasses
 import os
 import sys
 import textwrap
@@ -83,12 +84,16 @@ def columns(entries):
     return 3 if entries % 3 == 0 else 2
 
 
-def legend(ax, runs, extra=()):
-    """The legend above `ax`: one entry per run (a diverged run says when and why), then `extra`."""
+def entries(ax, runs, extra=()):
+    """Legend handles and texts: one per run (a diverged run says when and why), then `extra`."""
     handles = [next(h for h in ax.get_lines() if h.get_label() == run.label) for run in runs.runs]
     texts = [f"{run.label}: {run.divergence()}" if run.diverged else run.label for run in runs.runs]
-    handles += [h for h, _ in extra]
-    texts += [t for _, t in extra]
+    return handles + [h for h, _ in extra], texts + [t for _, t in extra]
+
+
+def legend(ax, runs, extra=()):
+    """The legend above `ax`."""
+    handles, texts = entries(ax, runs, extra)
     ax.legend(handles, texts, loc="lower center", bbox_to_anchor=(0.5, 1.02), ncol=columns(len(texts)), borderaxespad=0,
               handlelength=3.2, columnspacing=1.2)
 
@@ -225,10 +230,8 @@ def draw_trajectory_3d(runs):
     ax.set_zlabel(f"h ({unit})", labelpad=-1)
     ax.tick_params(pad=-2)
     ax.zaxis.set_major_locator(plt.MaxNLocator(2, integer=True))
-    handles = [next(h for h in ax.get_lines() if h.get_label() == run.label) for run in runs.runs]
-    texts = [f"{run.label}: {run.divergence()}" if run.diverged else run.label for run in runs.runs]
-    fig.legend(handles + [ax.get_lines()[-1]], texts + ["command"], loc="lower center", ncol=columns(len(texts) + 1),
-               handlelength=3.2, borderaxespad=0.2)
+    handles, texts = entries(ax, runs, [(ax.get_lines()[-1], "command")])
+    fig.legend(handles, texts, loc="lower center", ncol=columns(len(texts)), handlelength=3.2, borderaxespad=0.2)
     title(fig, runs, "trajectory_3d", "3-D trajectory, equal scales")
     return fig
 
@@ -270,7 +273,7 @@ def draw_compute_time(runs):
         period = float(runs.runs[0].summary["settings"]["controller_period_s"])
         budget = ax.axhline(period * 1e6, color="black", linewidth=0.9, linestyle=(0, (4, 2)))
         ax.set_yscale("log")
-        legend(ax, type(runs)(**{**runs.__dict__, "runs": measured}),
+        legend(ax, dataclasses.replace(runs, runs=measured),
                [(budget, f"budget at {1e-3 / period:g} kHz ({period * 1e6:g} µs)")])
     else:
         ax.text(0.5, 0.5, "compute time not measured in these runs", transform=ax.transAxes, ha="center")
@@ -298,7 +301,7 @@ def draw_summary(runs):
     hatches = ["////" if r.diverged else None for r in runs.runs]
     cost = np.array([r.summary["cost"]["J"] for r in runs.runs], dtype=float)
     compute = np.array([1e-3 * r.summary.get("compute_time_ns", {}).get("median", 0.0) for r in runs.runs])
-    for ax, values, xlabel in ((axes[1], cost, "cost J (Eq. 32)"), (axes[2], compute, "median compute time (µs)")):
+    for ax, values, xlabel in ((axes[1], cost, "cost J, Eq. 32 (–)"), (axes[2], compute, "median compute time (µs)")):
         bars = ax.barh(y, values, color=colours, hatch=hatches, edgecolor="white", linewidth=0)
         ax.bar_label(bars, fmt="%.3g", padding=2, fontsize=6.5)
         positive = values[values > 0]
