@@ -56,12 +56,17 @@ def draw_step_costs(times, budget_us):
     rows = [row for row, values in times.items() if values]
     controllers = list(dict.fromkeys(controller_of(row) for row in rows))
     looks = style.looks(controllers)
-    fig, ax = plt.subplots(figsize=style.size(style.COLUMN, 0.09 * len(rows) + 0.3))
+    fig, ax = plt.subplots(figsize=style.size(style.COLUMN, 0.055 * len(rows) + 0.35))
     y = np.arange(len(rows))
     boxes = ax.boxplot([times[row] for row in rows], positions=y, vert=False, widths=0.6, patch_artist=True,
                        showfliers=True, flierprops={"markersize": 2}, medianprops={"color": "black"})
-    for box, row in zip(boxes["boxes"], rows):
-        box.set(facecolor=looks[controller_of(row)].colour, alpha=0.8, linewidth=0.6)
+    for box, row, position in zip(boxes["boxes"], rows, y):
+        look = looks[controller_of(row)]
+        box.set(facecolor=look.colour, alpha=0.8, linewidth=0.6)
+        # The repetitions often agree to a few per cent, a box too thin to show its colour: the
+        # median's marker in the controller's look names it.
+        ax.plot([np.median(times[row])], [position], marker=look.marker, color=look.colour, markersize=4,
+                markeredgecolor="black", markeredgewidth=0.4, linestyle="none", zorder=5)
     ax.axvline(budget_us, color="black", linewidth=0.9, linestyle=(0, (4, 2)))
     ax.text(budget_us, -0.9, f"budget at {1e3 / budget_us:g} kHz ", ha="right", va="bottom", fontsize=6.5)
     ax.set_yticks(y, rows, fontsize=6.5)

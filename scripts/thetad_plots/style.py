@@ -82,16 +82,18 @@ def apply():
 
 
 def looks(labels):
-    """{label: Look} for the labels of one figure: fixed for the registered controllers, a free
-    spare slot (first choice by hash, then the next free one) for any other; more labels than
-    slots share them."""
+    """{label: Look} for the labels of one figure: fixed for the registered controllers, a spare
+    slot for any other: the first, from a hash of the label on, whose colour the figure does not
+    show yet, else whose look it does not; more labels than slots share them."""
     chosen = {label: KNOWN[label] for label in labels if label in KNOWN}
     # In sorted order, so that the slots do not depend on the order the labels come in.
     for label in sorted(set(labels) - set(chosen)):
         taken = set(chosen.values())
+        colours = {look.colour for look in taken}
         start = zlib.crc32(label.encode()) % len(SPARE)
-        free = [SPARE[(start + k) % len(SPARE)] for k in range(len(SPARE))]
-        chosen[label] = next((look for look in free if look not in taken), free[0])
+        order = [SPARE[(start + k) % len(SPARE)] for k in range(len(SPARE))]
+        chosen[label] = next((look for look in order if look.colour not in colours),
+                             next((look for look in order if look not in taken), order[0]))
     return {label: chosen[label] for label in labels}
 
 

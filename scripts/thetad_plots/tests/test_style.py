@@ -17,6 +17,11 @@ def test_every_label_of_a_figure_gets_its_own_look():
     assert style.looks(list(reversed(labels))) == looks
 
 
+def test_other_labels_take_colours_the_figure_does_not_show_yet():
+    looks = style.looks(["theta-d", "lqr", "sdre-cold", "sdre-warm"])
+    assert len({look.colour for look in looks.values()}) == 4
+
+
 def test_no_controller_looks_like_the_reference():
     for look in [*style.KNOWN.values(), *style.SPARE]:
         assert look.colour.lower() != "#000000"
