@@ -3,7 +3,7 @@
 `thetad plot --in DIR` checks the result folder (hashes, schema, same flight) and hands this
 package a manifest (JSON):
 
-  {"title": "...", "out": "staging dir", "formats": ["png", "svg"], "dpi": 300, "baseline": "",
+  {"out": "staging dir", "formats": ["png", "svg"], "dpi": 300, "baseline": "",
    "schema": [{"name": "t", "unit": "s"}, ...],          # thetad::sim::log_schema(), in order
    "runs": [{"name": "theta-d", "csv": "...", "columns": ["t", ...], "summary": {...result JSON...}}, ...]}
 
@@ -60,8 +60,8 @@ class Run:
 
 @dataclass
 class RunSet:
-    title: str
     scenario: str
+    seed: int
     setting: str  # "paper" (uncertainty, gust and noise on), "ideal" (all off) or "custom"
     baseline: str
     runs: list
@@ -137,4 +137,4 @@ def load(manifest, needed):
         raise PlotError(f"baseline '{baseline}' is none of the runs ({', '.join(labels)})")
     first = runs[0].summary
     scenario = first.get("provenance", {}).get("scenario", {}).get("name", "")
-    return RunSet(manifest.get("title", scenario), scenario, setting_of(first), baseline, runs, units)
+    return RunSet(scenario, first.get("seed"), setting_of(first), baseline, runs, units)

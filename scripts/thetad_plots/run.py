@@ -74,7 +74,7 @@ def thin(*arrays):
 
 def title(figure, runs, kind, what):
     """Two lines: what and which flight; the paper's figure number where the paper has one."""
-    flight = f"{NUMERALS.get(runs.scenario, runs.scenario)}, {SETTINGS[runs.setting]}"
+    flight = f"{NUMERALS.get(runs.scenario, runs.scenario)}, {SETTINGS[runs.setting]}, seed {runs.seed}"
     number = paper.figure_number(kind, runs.scenario)
     figure.suptitle(f"{what}{f' (cf. paper Fig. {number})' if number else ''}\n{flight}")
 

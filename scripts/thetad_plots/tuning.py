@@ -31,17 +31,20 @@ def read_curves(source):
 
 
 def draw_sigma_curves(t, sdre, default, tuned):
+    """σmax in units of 10⁶ (the curves sit near 3.26e6) and the relative differences in ppm, so
+    that no axis needs an offset label."""
     fig, (top, bottom) = plt.subplots(2, 1, sharex=True, figsize=style.size(style.COLUMN, 1.0))
     for rank, (name, values) in enumerate(zip(CURVES, (sdre, default, tuned))):
-        top.plot(t, values, **style.line(name, CURVES, rank, samples=len(t)))
+        top.plot(t, 1e-6 * values, **style.line(name, CURVES, rank, samples=len(t)))
         if rank:
-            bottom.plot(t, (values - sdre) / sdre, **style.line(name, CURVES, rank, samples=len(t)))
+            bottom.plot(t, 1e6 * (values - sdre) / sdre, **style.line(name, CURVES, rank, samples=len(t)))
+    top.ticklabel_format(axis="y", useOffset=False)
     bottom.axhline(0, color="black", linewidth=0.5)
-    top.set_ylabel("σmax(P) (–)")
-    top.legend(loc="lower center", bbox_to_anchor=(0.5, 1.02), ncol=2, handlelength=3.2)
-    bottom.set_ylabel("(σ_θD − σ_SDRE) / σ_SDRE (–)")
+    top.set_ylabel("σmax(P) (10⁶, –)")
+    top.legend(loc="lower center", bbox_to_anchor=(0.5, 1.02), ncol=1, handlelength=3.2)
+    bottom.set_ylabel("Δσ / σ_SDRE (ppm)")
     bottom.set_xlabel("time t (s)")
-    fig.suptitle("σmax of the Riccati solution along an SDRE flight")
+    fig.suptitle("σmax of the Riccati solution along an SDRE flight\nΔσ = σ_θD − σ_SDRE")
     return fig
 
 

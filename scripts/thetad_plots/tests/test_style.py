@@ -46,7 +46,9 @@ def test_sigma_curves_figure(tmp_path):
     fig = tuning.draw_sigma_curves(*tuning.read_curves(csv))
     top, bottom = fig.axes
     assert [l.get_label() for l in top.get_lines()] == tuning.CURVES
-    assert top.get_ylabel().endswith("(–)") and bottom.get_xlabel() == "time t (s)"
+    assert top.get_ylabel() == "σmax(P) (10⁶, –)" and bottom.get_ylabel().endswith("(ppm)")
+    assert bottom.get_xlabel() == "time t (s)"
+    assert [line.get_label() for line in bottom.get_lines()][:2] == tuning.CURVES[1:]
     plt.close(fig)
     csv.write_text("t,sigma\n0,1\n")
     assert tuning.main(["plot_tuning.py", str(csv), str(tmp_path / "bad")]) == 1
