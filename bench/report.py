@@ -2,11 +2,13 @@
 """Turns the Google Benchmark JSON of bench/run.sh into the generated part of docs/performance.md
 and the figures docs/figures/controllers_step.png and docs/figures/scaling.png.
 
-    /usr/bin/python3 bench/report.py OUT_DIR BUILD_DIR [DOC]
+    /usr/bin/python3 bench/report.py OUT_DIR BUILD_DIR [DOC] [--format png,pdf,svg]
 
 OUT_DIR holds controllers_bench.json and scaling_bench.json (others are ignored here), BUILD_DIR is
 the tree they were built in (for the compiler and its flags). Only the text between the markers
-below is replaced in DOC (default docs/performance.md); the hand-written sections stay.
+below is replaced in DOC (default docs/performance.md); the hand-written sections stay. The
+figures (thetad_plots.bench, docs/figures.md) go beside DOC under figures/, as PNG unless --format
+asks for more (the document links the PNGs).
 
 Statistics are over the repetitions (--benchmark_repetitions): each repetition is the mean CPU
 time per step over its iterations, and the table gives the median, 10th and 90th percentile of
@@ -14,6 +16,7 @@ those means. CPU time, not wall time: on a shared machine it leaves out the time
 processes took; the wall times are in the JSON.
 """
 
+import argparse
 import json
 import math
 import re
@@ -226,22 +229,26 @@ def scaling_section(series):
     return "\n".join(lines)
 
 
-def figures(controller_rows, series, figure_dir):
+def figures(controller_rows, series, figure_dir, formats):
     figure_dir.mkdir(parents=True, exist_ok=True)
     style.apply()
     times = {name: row["times"] for name, row in controller_rows.items() if not row["error"]}
     if any(times.values()):
-        style.save(bench.draw_step_costs(times, BUDGET_US), str(figure_dir / "controllers_step"), ["png"], dpi=200)
+        style.save(bench.draw_step_costs(times, BUDGET_US), str(figure_dir / "controllers_step"), formats, dpi=200)
     if series:
         ordered = {kind: series[kind] for kind in kinds_of(series)}
-        style.save(bench.draw_scaling(ordered, LABELS), str(figure_dir / "scaling"), ["png"], dpi=200)
+        style.save(bench.draw_scaling(ordered, LABELS), str(figure_dir / "scaling"), formats, dpi=200)
 
 
 def main():
-    if len(sys.argv) < 3:
-        sys.exit("usage: bench/report.py OUT_DIR BUILD_DIR [DOC]")
-    out_dir, build_dir = Path(sys.argv[1]), Path(sys.argv[2])
-    doc = Path(sys.argv[3]) if len(sys.argv) > 3 else REPO / "docs/performance.md"
+    parser = argparse.ArgumentParser(prog="bench/report.py", description=__doc__.splitlines()[0])
+    parser.add_argument("out_dir", type=Path, help="folder of controllers_bench.json and scaling_bench.json")
+    parser.add_argument("build_dir", type=Path, help="the build tree the benchmarks were built in")
+    parser.add_argument("doc", type=Path, nargs="?", default=REPO / "docs/performance.md")
+    style.add_format_option(parser)
+    arguments = parser.parse_args()
+    out_dir, build_dir, doc = arguments.out_dir, arguments.build_dir, arguments.doc
+    formats = sorted(set(arguments.formats) | {"png"})
     context, controller_rows = load(out_dir / "controllers_bench.json")
     series, scaling_text = {}, ""
     if (out_dir / "scaling_bench.json").exists():
@@ -260,8 +267,8 @@ def main():
     else:
         text = text.rstrip("\n") + "\n\n" + block + "\n"
     doc.write_text(text)
-    figures(controller_rows, series, doc.parent / "figures")
-    print(f"bench/report.py: wrote {doc} and {doc.parent / 'figures'}/{{controllers_step,scaling}}.png")
+    figures(controller_rows, series, doc.parent / "figures", formats)
+    print(f"bench/report.py: wrote {doc} and {doc.parent / 'figures'}/{{controllers_step,scaling}}.{{{','.join(formats)}}}")
 
 
 if __name__ == "__main__":

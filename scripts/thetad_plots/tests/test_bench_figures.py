@@ -1,5 +1,10 @@
 """The benchmark figures (thetad_plots.bench) on series whose answer is known."""
 
+import json
+import subprocess
+import sys
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -54,3 +59,33 @@ def test_step_costs_are_boxes_per_row_with_the_budget():
     assert "budget at 1 kHz" in [t.get_text().strip() for t in ax.texts]
     assert ax.get_xlabel() == "CPU time per control step (µs)"
     plt.close(fig)
+
+
+def benchmark_json(rows):
+    """Google Benchmark JSON with 5 repetitions of every (run_name, µs) row."""
+    return {"context": {"date": "2026-01-01T00:00:00+00:00", "executable": "/x/controllers_bench", "load_avg": [0.1]},
+            "benchmarks": [{"run_name": name, "run_type": "iteration", "cpu_time": us * (1 + 0.01 * k),
+                            "time_unit": "us"} for name, us in rows for k in range(5)]}
+
+
+def test_report_states_exponents_only_where_a_power_law_holds(tmp_path):
+    """bench/report.py end to end: the table's exponent row and the figures of every format."""
+    out = tmp_path / "bench"
+    out.mkdir()
+    (out / "controllers_bench.json").write_text(json.dumps(benchmark_json(
+        [("theta-d/terms:3/passes:1", 5.0), ("sdre-warm/passes:1", 170.0), ("lqr", 0.05)])))
+    (out / "scaling_bench.json").write_text(json.dumps(benchmark_json(
+        [(f"control_step/theta-d/n:{n}", 0.01 * n ** 3) for n in NS] +
+        [(f"control_step/lqr/n:{n}", t) for n, t in zip(NS, [0.05, 0.052, 0.049, 0.051, 0.05])])))
+    doc = tmp_path / "docs" / "performance.md"
+    doc.parent.mkdir()
+    doc.write_text("# Performance\n")
+    report = Path(__file__).resolve().parents[3] / "bench" / "report.py"
+    done = subprocess.run([sys.executable, str(report), str(out), str(tmp_path), str(doc), "--format", "svg"],
+                          capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    exponents = next(line for line in doc.read_text().splitlines() if line.startswith("| exponent |"))
+    assert exponents.startswith("| exponent | **3.00** | none (R² ")
+    for figure in ("controllers_step", "scaling"):
+        for fmt in ("png", "svg"):
+            assert (doc.parent / "figures" / f"{figure}.{fmt}").exists()
