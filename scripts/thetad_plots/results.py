@@ -51,10 +51,12 @@ class Run:
 
     def divergence(self):
         """'diverged at t = 12.34 s (roll |phi| = 1.1 rad exceeds 1 rad)' for a diverged run, else ''.
-        The reason is the result file's, without the time it repeats."""
+        The reason is the result file's without the time it repeats, and of a failure's chain
+        ('controller failed: main-rotor speed (A4): thrust T_mr = …') the first two links."""
         if not self.diverged:
             return ""
         reason = re.sub(r" at t = [-+0-9.e]+ s", "", self.summary.get("reason", "")).strip()
+        reason = ": ".join(reason.split(": ")[:2])
         return f"diverged at t = {self.end_time:.2f} s" + (f" ({reason})" if reason else "")
 
 

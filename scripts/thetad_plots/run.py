@@ -79,22 +79,25 @@ def title(figure, runs, kind, what):
     figure.suptitle(f"{what}{f' (cf. paper Fig. {number})' if number else ''}\n{flight}")
 
 
-def columns(entries):
-    """Legend columns that fill the rows evenly at column width."""
-    return 3 if entries % 3 == 0 else 2
+def columns(texts):
+    """Legend columns that fill the rows evenly at column width; one for long (divergence) entries."""
+    if max(len(text) for text in texts) > 30:
+        return 1
+    return 3 if len(texts) % 3 == 0 else 2
 
 
 def entries(ax, runs, extra=()):
-    """Legend handles and texts: one per run (a diverged run says when and why), then `extra`."""
+    """Legend handles and texts: one per run (a diverged run says when and why, wrapped to the
+    column), then `extra`."""
     handles = [next(h for h in ax.get_lines() if h.get_label() == run.label) for run in runs.runs]
-    texts = [f"{run.label}: {run.divergence()}" if run.diverged else run.label for run in runs.runs]
+    texts = [textwrap.fill(f"{run.label}: {run.divergence()}", 55) if run.diverged else run.label for run in runs.runs]
     return handles + [h for h, _ in extra], texts + [t for _, t in extra]
 
 
 def legend(ax, runs, extra=()):
     """The legend above `ax`."""
     handles, texts = entries(ax, runs, extra)
-    ax.legend(handles, texts, loc="lower center", bbox_to_anchor=(0.5, 1.02), ncol=columns(len(texts)), borderaxespad=0,
+    ax.legend(handles, texts, loc="lower center", bbox_to_anchor=(0.5, 1.02), ncol=columns(texts), borderaxespad=0,
               handlelength=3.2, columnspacing=1.2)
 
 
@@ -231,7 +234,7 @@ def draw_trajectory_3d(runs):
     ax.tick_params(pad=-2)
     ax.zaxis.set_major_locator(plt.MaxNLocator(2, integer=True))
     handles, texts = entries(ax, runs, [(ax.get_lines()[-1], "command")])
-    fig.legend(handles, texts, loc="lower center", ncol=columns(len(texts)), handlelength=3.2, borderaxespad=0.2)
+    fig.legend(handles, texts, loc="lower center", ncol=columns(texts), handlelength=3.2, borderaxespad=0.2)
     title(fig, runs, "trajectory_3d", "3-D trajectory, equal scales")
     return fig
 
@@ -316,7 +319,7 @@ def draw_summary(runs):
         axes[2].axvline(period * 1e6, color="black", linewidth=0.9, linestyle=(0, (4, 2)))
         axes[2].text(period * 1e6, len(labels) - 0.55, f"budget at {1e-3 / period:g} kHz ", fontsize=6.5, ha="right",
                      va="bottom")
-    axes[0].set_yticks(y, labels)
+    axes[0].set_yticks(y, [f"{r.label}\n(diverged)" if r.diverged else r.label for r in runs.runs])
     axes[0].invert_yaxis()
     for ax in axes:
         ax.grid(True, axis="x", which="both", linewidth=0.3)

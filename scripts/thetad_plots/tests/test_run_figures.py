@@ -30,7 +30,8 @@ def all_text(fig):
         legend = ax.get_legend()
         texts += [t.get_text() for t in legend.get_texts()] if legend else []
     texts += [t.get_text() for legend in fig.legends for t in legend.get_texts()]
-    return "\n".join(texts)
+    # Long entries are wrapped: read them as one line each.
+    return "\n".join(text.replace("\n", " ") for text in texts)
 
 
 @pytest.fixture(scope="module")
@@ -131,6 +132,8 @@ def test_divergence_is_marked_only_on_diverged_runs(flights, figures):
         assert "lqr: diverged at t = 2.50 s (roll |phi| = 1.2 rad exceeds 1.0472 rad)" in text, kind
         assert text.count("diverged at") == 1, kind
     assert "hatched: diverged" in drawn["summary"]._suptitle.get_text()
+    assert [t.get_text() for t in drawn["summary"].axes[0].get_yticklabels()] == ["theta-d", "lqr\n(diverged)",
+                                                                                  "example-pid"]
     for fig in drawn.values():
         plt.close(fig)
 
