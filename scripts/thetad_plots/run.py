@@ -6,6 +6,7 @@ and `main` saves them where a `thetad plot` manifest says (results.py describes 
 """
 
 import dataclasses
+import math
 import os
 import sys
 import textwrap
@@ -86,12 +87,15 @@ def columns(texts):
     return 3 if len(texts) % 3 == 0 else 2
 
 
+def run_texts(runs):
+    """A legend text per run: its label; a diverged run's also says when and why, wrapped to the column."""
+    return [textwrap.fill(f"{run.label}: {run.divergence()}", 55) if run.diverged else run.label for run in runs.runs]
+
+
 def entries(ax, runs, extra=()):
-    """Legend handles and texts: one per run (a diverged run says when and why, wrapped to the
-    column), then `extra`."""
+    """Legend handles and texts: one per run, then `extra`."""
     handles = [next(h for h in ax.get_lines() if h.get_label() == run.label) for run in runs.runs]
-    texts = [textwrap.fill(f"{run.label}: {run.divergence()}", 55) if run.diverged else run.label for run in runs.runs]
-    return handles + [h for h, _ in extra], texts + [t for _, t in extra]
+    return handles + [h for h, _ in extra], run_texts(runs) + [t for _, t in extra]
 
 
 def legend(ax, runs, extra=()):
@@ -211,8 +215,13 @@ def draw_trajectory_3d(runs):
     """The 3-D path of every run and the command, equal scales on all axes, seen from above the
     start corner so that the figure 8 / the circle is seen as a shape and the altitude still reads."""
     # Placed by hand: the layout engines do not see a 3-D axes' labels, and cut off the z label.
-    fig = plt.figure(figsize=style.size(style.COLUMN, 0.85), layout="none")
-    ax = fig.add_axes((0.0, 0.13, 0.9, 0.8), projection="3d")
+    # Below the plot, room for the legend's lines (0.14 in each); above, for the two title lines.
+    texts = run_texts(runs) + ["command"]
+    lines = sum(text.count("\n") + 1 for text in texts) / columns(texts)
+    legend_height, plot_height, title_height = 0.14 * math.ceil(lines) + 0.1, 0.72 * style.COLUMN, 0.35
+    height = legend_height + plot_height + title_height
+    fig = plt.figure(figsize=(style.COLUMN, height), layout="none")
+    ax = fig.add_axes((0.0, legend_height / height, 0.9, plot_height / height), projection="3d")
     command = runs.longest().data
     paths = [(r.data["x_p"], r.data["y_p"], -r.data["z_p"]) for r in runs.runs]
     paths.append((command["x_c"], command["y_c"], -command["z_c"]))
