@@ -45,36 +45,35 @@ std::string read_text(const fs::path& file) {
   return text.str();
 }
 
-struct Inputs {
-  std::string title;
-  std::vector<StoredRun> runs;
-};
-
 // The runs of a folder, each checked against its result file (read_result_folder); every run must
-// have a log to draw.
-Inputs read_inputs(const fs::path& in) {
+// have a log to draw, and `baseline`, if given, must be one of them.
+std::vector<StoredRun> read_inputs(const fs::path& in, const std::string& baseline) {
   if (!fs::is_directory(in)) throw Error("--in " + in.string() + ": no such directory");
-  Inputs inputs{{}, read_result_folder(in)};
-  for (const StoredRun& run : inputs.runs) {
+  std::vector<StoredRun> runs = read_result_folder(in);
+  for (const StoredRun& run : runs) {
     if (run.csv_file.empty())
       throw Error(run.json_file.string() + ": run '" + run.label + "' has no log to draw (flown --summary-only)");
   }
-  const ordered_json& first = inputs.runs.front().result;
-  inputs.title = first.at("provenance").at("scenario").at("name").get<std::string>() + " (seed " +
-                 std::to_string(first.at("seed").get<std::uint64_t>()) + ")";
-  return inputs;
+  if (!baseline.empty() && std::none_of(runs.begin(), runs.end(),
+                                        [&](const StoredRun& run) { return run.label == baseline; })) {
+    std::string message = "--baseline ";
+    message.append(baseline).append(": no run of ").append(in.string()).append(" has that label (runs:");
+    for (const StoredRun& run : runs) message.append(" ").append(run.label);
+    throw Error(message.append(")"));
+  }
+  return runs;
 }
 
-std::string manifest(const Inputs& inputs, const PlotArguments& arguments, const fs::path& staging) {
+std::string manifest(const std::vector<StoredRun>& runs, const PlotArguments& arguments, const fs::path& staging) {
   ordered_json j;
-  j["title"] = inputs.title;
   j["out"] = fs::absolute(staging).string();
   j["formats"] = arguments.formats;
   j["dpi"] = arguments.dpi;
+  j["baseline"] = arguments.baseline;
   j["schema"] = ordered_json::array();
   for (const auto& column : sim::log_schema()) j["schema"].push_back({{"name", column.name}, {"unit", column.unit}});
   j["runs"] = ordered_json::array();
-  for (const auto& run : inputs.runs) {
+  for (const auto& run : runs) {
     ordered_json columns = ordered_json::array();
     for (const auto& column : run.columns) columns.push_back(column.name);
     j["runs"].push_back({{"name", run.label},
@@ -149,18 +148,22 @@ CLI::App* add_plot_command(CLI::App& app, PlotArguments& arguments) {
   plot->add_option("--in", arguments.in, "Directory written by thetad compare (or thetad run)")->required();
   plot->add_option("--out", arguments.out, "Directory for the figures (created; existing files are replaced)")
       ->required();
-  plot->add_option("--formats", arguments.formats, "Comma-separated file formats")
+  plot->add_option("--format,--formats", arguments.formats, "Comma-separated file formats (png, svg, pdf)")
       ->delimiter(',')
       ->check(CLI::IsMember({"png", "svg", "pdf"}))
       ->capture_default_str();
-  plot->add_option("--dpi", arguments.dpi, "Resolution of raster formats")->check(CLI::Range(30, 600))->capture_default_str();
+  plot->add_option("--dpi", arguments.dpi, "Resolution of raster formats (the figures are 8.5 or 17.6 cm wide)")
+      ->check(CLI::Range(30, 600))
+      ->capture_default_str();
+  plot->add_option("--baseline", arguments.baseline,
+                   "Label of the run the difference panels (Euler angles) compare with; default: the first run");
   arguments.script = default_plot_script();
   plot->add_option("--script", arguments.script, "The plotting script")->capture_default_str();
   return plot;
 }
 
 int run_plot(const PlotArguments& arguments) {
-  const Inputs inputs = read_inputs(arguments.in);
+  const std::vector<StoredRun> runs = read_inputs(arguments.in, arguments.baseline);
   const fs::path& script = arguments.script;
   if (!fs::is_regular_file(script)) throw Error("plot script " + script.string() + " not found (see --script)");
   const char* python_variable = std::getenv("THETAD_PYTHON");
@@ -181,9 +184,9 @@ int run_plot(const PlotArguments& arguments) {
   // The script's own files start with a dot and stay behind in the staging directory.
   const fs::path manifest_file = staging.path / ".manifest.json";
   const fs::path log = staging.path / ".log";
-  write_file_atomically(manifest_file, manifest(inputs, arguments, staging.path));
+  write_file_atomically(manifest_file, manifest(runs, arguments, staging.path));
 
-  std::fprintf(stderr, "plot: drawing %zu run(s) from %s\n", inputs.runs.size(), arguments.in.c_str());
+  std::fprintf(stderr, "plot: drawing %zu run(s) from %s\n", runs.size(), arguments.in.c_str());
   const int status = run_script(python, script, manifest_file, log);
   const std::string messages = trimmed(read_text(log));
   if (status != 0) {

@@ -12,7 +12,8 @@ struct PlotArguments {
   std::filesystem::path in;
   std::filesystem::path out;
   std::vector<std::string> formats{"png", "svg"};
-  int dpi = 120;
+  int dpi = 300;
+  std::string baseline;          // the run the difference panels compare with; the first if empty
   std::filesystem::path script;  // scripts/plot_run.py of the source tree unless given
 };
 CLI::App* add_plot_command(CLI::App& app, PlotArguments& arguments);

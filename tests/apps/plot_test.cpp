@@ -121,6 +121,22 @@ TEST_F(Plot, LabelledRunsWithoutTimingDrawEveryFigure) {
   EXPECT_THAT(read(dir_ / "figures" / "position.svg"), HasSubstr("hover"));
 }
 
+// --format (or --formats) pdf: vector files a paper can print.
+TEST_F(Plot, DrawsPdfOnRequest) {
+  const Output output = plot("--format pdf --baseline example-pid");
+  ASSERT_EQ(output.status, 0) << output.err;
+  for (const auto& figure : kFigures) EXPECT_EQ(read(dir_ / "figures" / (figure + ".pdf")).substr(0, 5), "%PDF-") << figure;
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir_ / "figures"), fs::directory_iterator()), kFigures.size());
+}
+
+TEST_F(Plot, UnknownBaselineIsAClearError) {
+  const Output output = plot("--baseline nobody");
+  EXPECT_EQ(output.status, 1);
+  EXPECT_THAT(output.err, HasSubstr("--baseline nobody: no run of " + (dir_ / "runs").string() +
+                                    " has that label (runs: lqr example-pid)"));
+  expect_nothing_written();
+}
+
 TEST_F(Plot, MissingInputDirectoryIsAClearError) {
   const Output output = thetad(dir_, "plot --in " + (dir_ / "nowhere").string() + " --out " + (dir_ / "figures").string());
   EXPECT_EQ(output.status, 1);
