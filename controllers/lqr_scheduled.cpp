@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
 #include <numbers>
 #include <utility>
 
@@ -122,11 +124,9 @@ void LqrScheduledController::control(double t, const Eigen::Ref<const Eigen::Vec
   // period, through a first-order low pass (exact for a held input); zero at the first sample (the
   // scenarios start at rest). Not the measured velocity: V*'s velocity would then follow the
   // measurement and the velocity error, the damping of the loop, would vanish.
-  if (has_previous_ && t > previous_time_) {
-    const double period = t - previous_time_;
-    const double blend = velocity_time_constant_ > 0.0 ? 1.0 - std::exp(-period / velocity_time_constant_) : 1.0;
-    velocity_ += blend * ((reference.position - previous_reference_) / period - velocity_);
-  }
+  if (has_previous_ && t > previous_time_)
+    advance_scheduling_velocity(reference.position - previous_reference_, t - previous_time_, velocity_time_constant_,
+                                velocity_);
   previous_reference_ = reference.position;
   previous_time_ = t;
   has_previous_ = true;
@@ -137,6 +137,49 @@ void LqrScheduledController::control(double t, const Eigen::Ref<const Eigen::Vec
   const DesignVector error = v_.head<kDesignStates>() - trim_tracking_;
   u = trim_input_;
   u.noalias() -= gain_ * error;
+}
+
+void advance_scheduling_velocity(const Eigen::Vector3d& reference_step, double period, double time_constant,
+                                 Eigen::Vector3d& velocity) {
+  const double blend = time_constant > 0.0 ? 1.0 - std::exp(-period / time_constant) : 1.0;
+  velocity += blend * (reference_step / period - velocity);
+}
+
+void check_lqr_envelope(const LqrScheduleGrid& grid, double velocity_time_constant, const ReferenceTrajectory& reference,
+                        double duration, double period) {
+  constexpr double kSlack = 1e-9;  // m/s, rad: rounding of the backward differences
+  const auto where = [](double t, const Eigen::Vector3d& v) {
+    char text[160];
+    std::snprintf(text, sizeof text, "the scenario commands (V_N, V_E, climb) = (%.3g, %.3g, %.3g) m/s at t = %.3f s",
+                  v.x(), v.y(), -v.z(), t);
+    return std::string(text);
+  };
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero(), previous = reference.position(0.0);
+  const auto samples = static_cast<long long>(std::llround(duration / period));
+  for (long long k = 1; k < samples; ++k) {
+    const double t = static_cast<double>(k) * period;
+    const Eigen::Vector3d position = reference.position(t);
+    advance_scheduling_velocity(position - previous, period, velocity_time_constant, velocity);
+    previous = position;
+    const double speed = std::hypot(velocity.x(), velocity.y()), climb = -velocity.z();
+    std::string problem;
+    if (speed > grid.speeds.back() + kSlack || speed < grid.speeds.front() - kSlack) {
+      problem = "a horizontal speed outside the grid's speeds [" + std::to_string(grid.speeds.front()) + ", " +
+                std::to_string(grid.speeds.back()) + "] m/s";
+    } else if (climb > grid.climb_rates.back() + kSlack || climb < grid.climb_rates.front() - kSlack) {
+      problem = "a climb rate outside the grid's climb rates [" + std::to_string(grid.climb_rates.front()) + ", " +
+                std::to_string(grid.climb_rates.back()) + "] m/s";
+    } else if (grid.courses.size() == 1 && speed > kSlack) {
+      const double off = std::remainder(std::atan2(velocity.y(), velocity.x()) - grid.courses.front(), kTwoPi);
+      if (std::abs(off) > 1e-6) problem = "a course off the grid's only course";
+    }
+    if (!problem.empty()) {
+      throw Error("lqr-scheduled: " + where(t, velocity) + " (the reference's velocity low-passed with " +
+                  std::to_string(velocity_time_constant) + " s, as the controller schedules on it), " + problem +
+                  ": beyond it the controller would fly the trims and gains of another flight. Give a grid that "
+                  "holds it (settings grid: speeds, courses_deg, climb_rates) or a longer velocity_time_constant");
+    }
+  }
 }
 
 namespace {
@@ -156,8 +199,13 @@ std::unique_ptr<Controller> make_lqr_scheduled(const Settings& fields, const Con
     const std::string file = fields.string("table", "");
     table = std::make_shared<LqrScheduleTable>(load_lqr_schedule(file));
     check_lqr_schedule_model(*table, model, file);
+    if (context.reference)
+      check_lqr_envelope(table->grid, time_constant, *context.reference, context.duration, context.controller_period);
   } else {
     const LqrScheduleGrid grid = read_lqr_grid(fields.block("grid"));
+    // Before the design: a grid that cannot hold the flight fails now, not after seconds of trims.
+    if (context.reference)
+      check_lqr_envelope(grid, time_constant, *context.reference, context.duration, context.controller_period);
     const Eigen::VectorXd q =
         fields.diagonal_weight("Q", context.defaults.state_weights, Settings::Weight::positive_semidefinite).diagonal();
     const Eigen::VectorXd r =

@@ -25,6 +25,19 @@
 
 namespace thetad {
 
+// One step of the scheduling velocity: `velocity` moves towards the backward difference of the
+// reference over `period` through a first-order low pass with `time_constant` (exact for a held
+// input; 0: no filter).
+void advance_scheduling_velocity(const Eigen::Vector3d& reference_step, double period, double time_constant,
+                                 Eigen::Vector3d& velocity);
+
+// Flies the scheduling velocity along `reference` for `duration` at `period`, as the controller
+// will, and throws thetad::Error naming the first time and velocity that `grid` does not hold
+// (speed beyond its speeds, climb rate beyond its climb rates, a course off its only course):
+// there the controller would clamp to the grid's edge and fly trims of another flight.
+void check_lqr_envelope(const LqrScheduleGrid& grid, double velocity_time_constant, const ReferenceTrajectory& reference,
+                        double duration, double period);
+
 class LqrScheduledController final : public Controller {
  public:
   static constexpr int kDesignStates = LqrScheduleTable::kDesignStates;

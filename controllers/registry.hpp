@@ -22,6 +22,12 @@ struct ControllerContext {
   DesignDefaults defaults;          // plant.design_defaults() unless the caller chose others
   Eigen::VectorXd initial_state;
   double initial_time = 0.0;
+  // The run's commanded trajectory, its duration and the controller period (s), when the caller
+  // knows them (a Flight does; null otherwise): a controller with a bounded envelope checks it
+  // against the command before anything flies. The trajectory must outlive the context.
+  const ReferenceTrajectory* reference = nullptr;
+  double duration = 0.0;
+  double controller_period = 0.0;
 
   // Keeps a reference to `plant`: it must outlive the context and the controllers built with it.
   ControllerContext(const SdcPlant& plant, Eigen::VectorXd initial_state, double initial_time = 0.0);

@@ -58,7 +58,10 @@ std::string Flight::disturbances() const {
 }
 
 PreparedController Flight::prepare(const ControllerSpec& spec) const {
-  const ControllerContext context(model_, scenario_.initial_state, 0.0);
+  ControllerContext context(model_, scenario_.initial_state, 0.0);
+  context.reference = &scenario_.trajectory;
+  context.duration = settings_.duration;
+  context.controller_period = settings_.controller_period();
   auto build = [&] { return ControllerRegistry::instance().build(spec.controller, spec.settings, context); };
   BuiltController built = spec.settings_source.empty() ? build() : with_settings_source(spec.settings_source, build);
   return {spec, std::move(built.controller), built.settings, {}};

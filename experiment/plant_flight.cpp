@@ -13,6 +13,7 @@ PlantFlightResult fly_plant(const SdcPlant& plant, const ControllerSpec& spec, c
   if (!controls.duration) throw Error("fly_plant: the run controls must give a duration");
   sim::SimulationSettings settings = sim::SimulationSettings::ideal();
   apply(controls, settings);
+  settings.actuator_limits.enabled = false;  // the helicopter's servos: nothing to do with a user's plant
   const ControllerContext context(plant, x0, 0.0);
   auto build = [&] { return ControllerRegistry::instance().build(spec.controller, spec.settings, context); };
   BuiltController built = spec.settings_source.empty() ? build() : with_settings_source(spec.settings_source, build);

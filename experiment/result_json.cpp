@@ -38,6 +38,12 @@ Json settings_json(const sim::SimulationSettings& s) {
                             {"max_body_rate_rad_per_s", s.limits.max_body_rate},
                             {"max_speed_m_per_s", s.limits.max_speed},
                             {"max_ground_penetration_m", s.limits.max_ground_penetration}};
+  const auto channels = [](const sim::InputVector& v) { return Json::array({v[0], v[1], v[2], v[3], v[4]}); };
+  j["actuator_limits"] = {{"enabled", s.actuator_limits.enabled},
+                          {"channels", {"T_mr_N", "delta_ped_rad", "delta_col_rad", "delta_lon_rad", "delta_lat_rad"}},
+                          {"lower", channels(s.actuator_limits.lower)},
+                          {"upper", channels(s.actuator_limits.upper)},
+                          {"rate_per_s", channels(s.actuator_limits.rate)}};
   j["measure_compute_time"] = s.measure_compute_time;
   return j;
 }
@@ -79,6 +85,11 @@ Json summary_json(const sim::RunSummary& summary) {
     if (column.name.rfind("cmd_", 0) == 0) effort["rms"][column.header().substr(4)] = summary.command_rms[channel++];
   }
   j["control_effort"] = effort;
+  j["saturation"] = {{"definition", "controller samples whose applied input the actuator limits changed"},
+                     {"channels", {"T_mr", "delta_ped", "delta_col", "delta_lon", "delta_lat"}},
+                     {"magnitude", summary.saturation.magnitude},
+                     {"rate", summary.saturation.rate},
+                     {"samples_limited", summary.saturation.samples_limited}};
   j["cost"] = {{"definition",
                 "J = 1/2 sum_k (V_track' Q V_track + u_cmd' R u_cmd) T_c, Eq. 32 with Q, R of Eqs. 33-34, "
                 "true V_track"},

@@ -56,6 +56,7 @@ void apply(const RunControls& controls, sim::SimulationSettings& settings) {
   set(controls.actuator_noise, settings.noise.actuator);
   set(controls.wind_noise, settings.noise.wind_component);
   set(controls.induced_velocity_noise, settings.noise.induced_velocity);
+  set(controls.actuator_limits, settings.actuator_limits.enabled);
   if (controls.summary_only) settings.keep_log = !*controls.summary_only;
   if (controls.timing) settings.measure_compute_time = *controls.timing;
 }

@@ -18,6 +18,7 @@ struct RunControls {
   // Each disturbance on its own (after `ideal`): replays and sweeps set them one by one.
   std::optional<bool> parameter_uncertainty, wind_gust, measurement_noise, actuator_noise, wind_noise,
       induced_velocity_noise;
+  std::optional<bool> actuator_limits;   // servo magnitude and rate limits (sim::ActuatorLimits)
   std::optional<bool> summary_only;      // true: no log, the summary only
   std::optional<bool> timing;            // false: no wall-clock figure anywhere (byte-identical reruns)
 };

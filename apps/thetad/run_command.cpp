@@ -116,6 +116,12 @@ void add_flight_options(CLI::App& command, FlightOptions& options, bool scenario
       "--seed", [&options](const std::string& text) { options.controls.seed = parse_seed(text); },
       "Seed of the run's random numbers (default: the scenario's, else 1)");
   command.add_flag("--ideal", options.controls.ideal, "No parameter uncertainty, noise or wind");
+  command
+      .add_option_function<std::string>(
+          "--actuator-limits", [&options](const std::string& text) { options.controls.actuator_limits = text == "on"; },
+          "Servo magnitude and rate limits on the applied input: on|off (default: the scenario's, else off; "
+          "docs/model.md §12)")
+      ->check(CLI::IsMember({"on", "off"}));
   command.add_option_function<double>(
       "--duration", [&options](double value) { options.controls.duration = value; },
       "Simulated seconds to fly (default: the scenario's)");

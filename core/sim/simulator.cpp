@@ -48,6 +48,8 @@ std::vector<LogColumn> build_log_schema() {
   for (const auto& [name, unit] : kStateColumns) columns.push_back({std::string("meas_") + name, unit});
   for (const auto& [name, unit] : kInputColumns) columns.push_back({std::string("cmd_") + name, unit});
   for (const auto& [name, unit] : kInputColumns) columns.push_back({std::string("app_") + name, unit});
+  // 0 free, 1 held at a magnitude bound, 2 slowed by the rate limit (ActuatorLimiter).
+  for (const auto& [name, unit] : kInputColumns) columns.push_back({std::string("sat_") + name, "flag"});
   columns.push_back({"Omega_mr", "rad_per_s"});
   columns.push_back({"wind_N", "m_per_s"});
   columns.push_back({"wind_E", "m_per_s"});
@@ -174,7 +176,7 @@ std::optional<std::string> hold_for_one_period(const heli::Helicopter& plant, co
 // One log row, in the order of log_schema().
 void append_row(double t, const Eigen::Vector3d& command_position, const Eigen::VectorXd& x,
                 const Eigen::VectorXd& measured, const Eigen::VectorXd& command, const Eigen::VectorXd& applied,
-                double rotor_speed, const Eigen::Vector3d& wind, std::int64_t compute_ns, RunLog& log) {
+                unsigned saturation_flags, double rotor_speed, const Eigen::Vector3d& wind, std::int64_t compute_ns, RunLog& log) {
   auto& row = log.values;
   row.push_back(t);
   row.insert(row.end(), command_position.begin(), command_position.end());
@@ -182,6 +184,10 @@ void append_row(double t, const Eigen::Vector3d& command_position, const Eigen::
   row.insert(row.end(), measured.begin(), measured.end());
   row.insert(row.end(), command.begin(), command.end());
   row.insert(row.end(), applied.begin(), applied.end());
+  for (int k = 0; k < kInputDim; ++k) {
+    const bool magnitude = (saturation_flags >> k) & 1u, rate = (saturation_flags >> (k + kInputDim)) & 1u;
+    row.push_back(magnitude ? 1.0 : rate ? 2.0 : 0.0);
+  }
   row.push_back(rotor_speed);
   row.insert(row.end(), wind.begin(), wind.end());
   row.push_back(static_cast<double>(compute_ns));
@@ -198,6 +204,7 @@ void SimulationSettings::validate() const {
                 std::to_string(static_cast<int>(kMaxDuration)) + " s (one simulated day)");
   if (duration / controller_period() > 1e10)
     throw Error("simulate: the controller period is too short for the duration (more than 1e10 samples)");
+  if (actuator_limits.enabled) actuator_limits.validate();
 }
 
 SimulationSettings SimulationSettings::ideal() {
@@ -232,6 +239,7 @@ RunResult simulate(ControlLaw& law, const ReferenceTrajectory& reference, const 
   Helicopter plant(settings.parameter_uncertainty ? drawn.parameters : nominal, options);
   const NoiseLevels levels = NoiseLevels::from_uncertainty_table();
   WindGust gust(settings.wind_gust, period);
+  ActuatorLimiter limiter(settings.actuator_limits, period);
   // J of Eq. (14) with the weights the controllers are designed with (the paper's, Eqs. 33-34).
   const DesignDefaults design = plant.design_defaults();
   RunMetrics metrics(design.state_weights, design.input_weights, period, samples, settings.measure_compute_time);
@@ -269,6 +277,7 @@ RunResult simulate(ControlLaw& law, const ReferenceTrajectory& reference, const 
       break;
     }
     apply_actuator_noise(command, draws, levels, settings.noise, applied);
+    limiter.apply(applied);
     double rotor_speed = 0.0;
     try {
       rotor_speed = plant.rotor_speed(x, applied[kTmr]);
@@ -281,7 +290,7 @@ RunResult simulate(ControlLaw& law, const ReferenceTrajectory& reference, const 
     true_tracking_vector(x, error, true_error_integral.value, v_track);
     metrics.add(error, v_track, command, elapsed_ns);
     if (settings.keep_log && k % settings.log_every == 0)
-      append_row(t, position_command, x, measured, command, applied, rotor_speed, plant.environment().wind_ned,
+      append_row(t, position_command, x, measured, command, applied, limiter.last_flags(), rotor_speed, plant.environment().wind_ned,
                  elapsed_ns, result.log);
 
     reference_integral.accumulate(position_command, period);
@@ -299,6 +308,7 @@ RunResult simulate(ControlLaw& law, const ReferenceTrajectory& reference, const 
     summary.end_time = static_cast<double>(samples) * period;
   }
   metrics.finish(summary);
+  summary.saturation = limiter.counts();
   summary.controller_counters = law.counters();
   return result;
 }

@@ -12,6 +12,7 @@
 
 #include "core/helicopter/helicopter.hpp"
 #include "core/control_law.hpp"
+#include "core/sim/actuator_limits.hpp"
 #include "core/sim/noise.hpp"
 #include "core/sim/wind_gust.hpp"
 
@@ -36,6 +37,9 @@ struct SimulationSettings {
   WindGustSettings wind_gust;
   NoiseSettings noise;
   DivergenceLimits limits;
+  // Servo magnitude and rate limits on the applied input: the X-Cell's, off by default (the paper
+  // has none, and θ–D with the paper's weights does not survive them: docs/model.md §12).
+  ActuatorLimits actuator_limits = ActuatorLimits::off();
   // Off makes the compute_ns column and the timing statistics 0, so that two runs with the same
   // seed give byte-identical files (the only non-deterministic quantity of a run is its timing).
   bool measure_compute_time = true;
@@ -47,11 +51,11 @@ struct SimulationSettings {
 
   // One simulated day: longer flights are a mistake in a file, not a study.
   static constexpr double kMaxDuration = 86400.0;
-  // What one run's log and timing samples may hold in memory (bytes): 2 GiB, about 80 minutes of
-  // flight logged at every 1 kHz sample (55 columns). Beyond it simulate() refuses up front.
+  // What one run's log and timing samples may hold in memory (bytes): 2 GiB, about 75 minutes of
+  // flight logged at every 1 kHz sample (60 columns). Beyond it simulate() refuses up front.
   static constexpr double kMaxRunMemory = 2.0 * (1 << 30);
 
-  // Every disturbance on: the paper's setting (spec §8.1).
+  // Every disturbance on: the paper's setting (spec §8.1); no actuator limits.
   static SimulationSettings paper() { return {}; }
   // Every disturbance off: nominal plant, no wind, no noise.
   static SimulationSettings ideal();
@@ -101,6 +105,8 @@ struct RunSummary {
   // Control effort: RMS of the commanded input per channel over the controller samples
   // (N, rad, rad, rad, rad). Commanded, not applied: it measures the controller, not the noise.
   Eigen::Matrix<double, 5, 1> command_rms = Eigen::Matrix<double, 5, 1>::Zero();
+  // Controller samples whose applied input the actuator limits changed, per channel (none when off).
+  SaturationCounts saturation;
   // J = 1/2 sum_k (V_track^T Q V_track + u^T R u) T_c (Eq. 32 on V_track, Q and R of §7.2), with the
   // true V_track (integral entries by the PositionIntegral rule on the true position error) and
   // the commanded u, by left rectangles at the controller rate.
@@ -125,7 +131,7 @@ struct RunResult {
 // of disturbances, and bit-identical results for the same settings.
 //
 // Per controller sample k at t_k = k T_c: draw; gust and environment (held for the sample);
-// measure; control() (timed); actuator noise; log; then controller_period_steps RK4 steps of dt
+// measure; control() (timed); actuator noise; actuator limits; log; then controller_period_steps RK4 steps of dt
 // with the applied input held. Divergence (DivergenceLimits, non-finite state, command or rotor
 // speed, or a thetad::Error from the plant or the controller) ends the run with status diverged.
 // Throws thetad::Error for invalid settings or a wrongly sized x0. `progress`, when given, is called

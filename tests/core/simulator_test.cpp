@@ -122,7 +122,7 @@ SimulationSettings short_paper_run(std::uint64_t seed) {
 
 TEST(LogSchema, NamesEveryColumnWithItsUnit) {
   const auto& schema = log_schema();
-  EXPECT_EQ(schema.size(), 1u + 3 + kStateDim + kStateDim + kInputDim + kInputDim + 1 + 3 + 1);
+  EXPECT_EQ(schema.size(), 1u + 3 + kStateDim + kStateDim + kInputDim + kInputDim + kInputDim + 1 + 3 + 1);
   EXPECT_EQ(schema.front().header(), "t_s");
   EXPECT_EQ(schema.back().header(), "compute_ns");
   for (const auto& c : schema) EXPECT_FALSE(c.unit.empty()) << c.name;
@@ -130,7 +130,8 @@ TEST(LogSchema, NamesEveryColumnWithItsUnit) {
   EXPECT_NE(csv_header().find(",phi_rad,"), std::string::npos);
   EXPECT_NE(csv_header().find(",meas_p_rad_per_s,"), std::string::npos);
   EXPECT_NE(csv_header().find(",cmd_T_mr_N,"), std::string::npos);
-  EXPECT_NE(csv_header().find(",app_delta_lat_rad,Omega_mr_rad_per_s,wind_N_m_per_s,"), std::string::npos);
+  EXPECT_NE(csv_header().find(",app_delta_lat_rad,sat_T_mr_flag,"), std::string::npos);
+  EXPECT_NE(csv_header().find(",sat_delta_lat_flag,Omega_mr_rad_per_s,wind_N_m_per_s,"), std::string::npos);
 }
 
 // Open loop from the printed trim for 1 s, nothing disturbing it: the drift measures how well the

@@ -115,6 +115,25 @@ TEST(Scenario, SimulationOverridesApply) {
   EXPECT_EQ(scenario.model_preset, "paper");
 }
 
+TEST(Scenario, ActuatorLimitsAreOffUnlessTheFileSaysAndTheyNeverFlyThePaperPresetUnasked) {
+  const auto limits_on = [](const std::string& simulation, bool base_on) {
+    sim::SimulationSettings base;
+    base.actuator_limits.enabled = base_on;
+    return parse_scenario(kHeader + kTakeoff + kHover + simulation, "test.yaml")
+        .simulation_settings(base)
+        .actuator_limits.enabled;
+  };
+  EXPECT_FALSE(sim::SimulationSettings::paper().actuator_limits.enabled);
+  EXPECT_FALSE(limits_on("", false));
+  EXPECT_TRUE(limits_on("simulation:\n  actuator_limits: on\n", false));
+  EXPECT_TRUE(limits_on("", true));
+  EXPECT_FALSE(limits_on("simulation:\n  model:\n    preset: paper\n", true));
+  EXPECT_TRUE(limits_on("simulation:\n  actuator_limits: on\n  model:\n    preset: paper\n", false));
+  EXPECT_FALSE(limits_on("simulation:\n  actuator_limits: off\n", true));
+  EXPECT_THAT(error_of(kHeader + kTakeoff + kHover + "simulation:\n  actuator_limits: maybe\n"),
+              HasSubstr("field 'simulation.actuator_limits'"));
+}
+
 TEST(Scenario, RunControlsInTheSimulationBlock) {
   const Scenario scenario = parse_scenario(kHeader + kTakeoff + kHover +
                                                "simulation:\n  duration: 4.5\n  log_every: 10\n  summary_only: true\n"
