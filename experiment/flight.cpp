@@ -4,11 +4,12 @@
 #include <cstdio>
 
 #include "controllers/registry.hpp"
+#include "core/text_file.hpp"
 #include "settings/settings.hpp"
 #include "experiment/build_info.hpp"
+#include "experiment/controller_build.hpp"
 #include "experiment/scenario_files.hpp"
 #include "experiment/sha256.hpp"
-#include "experiment/text_file.hpp"
 
 namespace thetad {
 
@@ -59,8 +60,7 @@ std::string Flight::disturbances() const {
 
 PreparedController Flight::prepare(const ControllerSpec& spec) const {
   const ControllerContext context(model_, scenario_.initial_state, 0.0);
-  auto build = [&] { return ControllerRegistry::instance().build(spec.controller, spec.settings, context); };
-  BuiltController built = spec.settings_source.empty() ? build() : with_settings_source(spec.settings_source, build);
+  BuiltController built = build_controller(spec, context);
   return {spec, std::move(built.controller), built.settings};
 }
 
