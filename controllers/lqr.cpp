@@ -57,6 +57,7 @@ std::unique_ptr<Controller> make_lqr(const Settings& fields, const ControllerCon
   settings.Q = fields.diagonal_weight("Q", context.defaults.state_weights, Settings::Weight::positive_semidefinite);
   settings.R = fields.diagonal_weight("R", context.defaults.input_weights, Settings::Weight::positive_definite);
   settings.design_states = heli::kStateDim - 1;  // all but the bias state s
+  if (context.settings_only) return nullptr;
   const Eigen::VectorXd& x0 = context.initial_state;
   if (x0.size() != heli::kStateDim) {
     throw Error("lqr: initial state has " + std::to_string(x0.size()) + " entries, the model " +

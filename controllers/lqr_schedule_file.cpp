@@ -12,6 +12,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "core/text_file.hpp"
 
 namespace thetad {
 
@@ -190,12 +191,11 @@ LqrSchedulePoint read_point(const TableReader& read, const json& entry, const st
 }  // namespace
 
 LqrScheduleTable load_lqr_schedule(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw Error("lqr-scheduled table " + file.string() + ": cannot read: " + std::strerror(errno));
+  const std::string text = read_text_file(file);
   const TableReader read(file);
   json document;
   try {
-    document = json::parse(in);
+    document = json::parse(text);
   } catch (const json::exception& error) {
     throw Error("lqr-scheduled table " + file.string() + ": invalid JSON: " + error.what());
   }

@@ -210,6 +210,7 @@ std::unique_ptr<Controller> make_lqr_scheduled(const Settings& fields, const Con
         fields.diagonal_weight("Q", context.defaults.state_weights, Settings::Weight::positive_semidefinite).diagonal();
     const Eigen::VectorXd r =
         fields.diagonal_weight("R", context.defaults.input_weights, Settings::Weight::positive_definite).diagonal();
+    if (context.settings_only) return nullptr;
     table = std::make_shared<LqrScheduleTable>(design_lqr_schedule(model, grid, q, r));
   }
   return std::make_unique<LqrScheduledController>(model, std::move(table), time_constant);

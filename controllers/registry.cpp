@@ -72,7 +72,15 @@ BuiltController ControllerRegistry::build(const std::string& name, const YAML::N
   const Entry& found = entry(name);
   const Settings fields(settings);
   std::unique_ptr<Controller> controller = found.factory(fields, context);
+  if (!controller) throw Error("controller '" + name + "' (" + found.origin + "): its factory returned no controller");
   return {std::move(controller), fields.resolved()};
+}
+
+void ControllerRegistry::check(const std::string& name, const YAML::Node& settings,
+                               const ControllerContext& context) const {
+  ControllerContext checking = context;
+  checking.settings_only = true;
+  entry(name).factory(Settings(settings), checking);
 }
 
 bool ControllerRegistry::contains(const std::string& name) const {

@@ -28,6 +28,9 @@ struct ControllerContext {
   const ReferenceTrajectory* reference = nullptr;
   double duration = 0.0;
   double controller_period = 0.0;
+  // True when the caller only checks the settings (ControllerRegistry::check): a factory may then
+  // return nullptr once it has read every field, skipping a costly design.
+  bool settings_only = false;
 
   // Keeps a reference to `plant`: it must outlive the context and the controllers built with it.
   ControllerContext(const SdcPlant& plant, Eigen::VectorXd initial_state, double initial_time = 0.0);
@@ -77,6 +80,10 @@ class ControllerRegistry {
   std::unique_ptr<Controller> make(const std::string& name, const YAML::Node& settings,
                                    const ControllerContext& context) const;
   BuiltController build(const std::string& name, const YAML::Node& settings, const ControllerContext& context) const;
+  // Reads `settings` as build() would and throws the same errors, but designs nothing where the
+  // factory honours ControllerContext::settings_only: for the blocks of a settings file that a
+  // run does not fly, so that a typo there is found now and not by the next run that flies it.
+  void check(const std::string& name, const YAML::Node& settings, const ControllerContext& context) const;
   std::vector<std::string> names() const;
   bool contains(const std::string& name) const;
   // The names, sorted, comma separated: for "unknown controller" messages.

@@ -139,6 +139,7 @@ std::unique_ptr<Controller> make_sdre(const Settings& fields, const ControllerCo
   settings.Q = fields.diagonal_weight("Q", defaults.state_weights, Settings::Weight::positive_semidefinite);
   settings.R = fields.diagonal_weight("R", defaults.input_weights, Settings::Weight::positive_definite);
   settings.initial_input = defaults.input;
+  if (context.settings_only) return nullptr;
   return std::make_unique<SdreController>(context.plant, std::move(settings));
 }
 

@@ -55,6 +55,7 @@ const ControllerRegistration registration(
       s.Q = settings.diagonal_weight("Q", defaults.state_weights, Settings::Weight::positive_semidefinite);
       s.R = settings.diagonal_weight("R", defaults.input_weights, Settings::Weight::positive_definite);
       s.initial_input = defaults.input;
+      if (context.settings_only) return nullptr;
       return std::make_unique<ThetaDController>(context.plant, std::move(s));
     });
 

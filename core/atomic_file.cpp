@@ -109,9 +109,16 @@ PartialFile::~PartialFile() {
 void PartialFile::write(const std::function<void(std::ostream&)>& write) {
   std::ofstream out(partial_, std::ios::binary | std::ios::trunc);
   if (!out) throw Error("cannot write " + final_.string() + ": " + std::strerror(errno));
+  errno = 0;
   write(out);
+  out.flush();
+  // The reason of the write(2) that failed (ENOSPC, EFBIG under a file size limit, EIO), taken
+  // before close() can overwrite it.
+  const int reason = out ? 0 : errno;
   out.close();
-  if (!out) throw Error("writing " + final_.string() + " failed (disk full or file too large?)");
+  if (!out)
+    throw Error("cannot write " + final_.string() + ": " + (reason != 0 ? std::strerror(reason) : "write error") +
+                " (nothing was written under that name)");
 }
 
 void PartialFile::commit() {

@@ -66,7 +66,7 @@ nlohmann::ordered_json comparison_json(const Flight& flight, const std::vector<R
   for (std::size_t i = 0; i < runs.size(); ++i) {
     j["runs"].push_back({{"label", runs[i].spec.label},
                          {"controller", runs[i].spec.controller},
-                         {"status", runs[i].completed() ? "completed" : "diverged"},
+                         {"status", sim::status_name(runs[i].summary.status)},
                          {"json", files[i].json.filename().string()},
                          {"json_sha256", sha256_of_file(files[i].json)}});
   }

@@ -2,29 +2,15 @@
 
 #include <algorithm>
 #include <cctype>
-#include <sstream>
 
 #include "controllers/registry.hpp"
 #include "core/error.hpp"
 #include "settings/settings.hpp"
-#include "experiment/text_file.hpp"
+#include "settings/yaml_document.hpp"
 
 namespace thetad {
 
 namespace {
-
-// The YAML document of `file`; errors name the file, line and column.
-YAML::Node load_yaml(const std::filesystem::path& file) {
-  const std::string text = read_text_file(file);
-  try {
-    return YAML::Load(text);
-  } catch (const YAML::Exception& error) {
-    std::ostringstream message;
-    message << file.string() << ":" << error.mark.line + 1 << ":" << error.mark.column + 1
-            << ": invalid YAML: " << error.msg;
-    throw Error(message.str());
-  }
-}
 
 std::string lower_case(std::string text) {
   for (char& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -39,7 +25,7 @@ YAML::Node block_of(const YAML::Node& file, const std::string& name) {
 }  // namespace
 
 YAML::Node load_settings_file(const std::filesystem::path& file) {
-  const YAML::Node root = load_yaml(file);
+  const YAML::Node root = load_yaml_file(file);
   if (!root.IsDefined() || root.IsNull()) return root;
   if (!root.IsMap())
     throw SettingsError("settings", "expected a map from controller name to its settings", root.Mark(), file.string());
@@ -103,9 +89,11 @@ ControllerSpec parse_controller_spec(const std::string& text, const YAML::Node& 
       throw Error("controller '" + text + "': " + file + " has no block for '" + spec.controller + "'");
     spec.settings = block_of(settings, spec.controller);
     spec.settings_source = file;
-  } else {
+    spec.settings_file = settings;
+  } else if (fallback.IsDefined() && !fallback.IsNull()) {
     spec.settings = block_of(fallback, spec.controller);
-    if (!spec.settings.IsNull()) spec.settings_source = fallback_source;
+    spec.settings_source = fallback_source;
+    spec.settings_file = fallback;
   }
   return spec;
 }
@@ -120,7 +108,7 @@ std::vector<ControllerSpec> parse_controller_specs(const std::vector<std::string
 }
 
 std::vector<ControllerSpec> load_controller_specs(const std::filesystem::path& file) {
-  const YAML::Node root = load_yaml(file);
+  const YAML::Node root = load_yaml_file(file);
   return with_settings_source(file.string(), [&] {
     const Settings top(root);
     top.allow_only({"controllers"});
@@ -157,6 +145,7 @@ std::vector<ControllerSpec> read_controller_specs(const YAML::Node& list, const 
           throw item.error("settings", file.string() + " has no block for '" + spec.controller + "'");
         spec.settings = block_of(blocks, spec.controller);
         spec.settings_source = file.string();
+        spec.settings_file = blocks;
       } else if (settings && !settings.IsNull()) {
         if (!settings.IsMap()) throw item.error("settings", "expected a settings map or the name of a settings file");
         spec.settings = settings;

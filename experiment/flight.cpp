@@ -4,11 +4,12 @@
 #include <cstdio>
 
 #include "controllers/registry.hpp"
+#include "core/text_file.hpp"
 #include "settings/settings.hpp"
 #include "experiment/build_info.hpp"
+#include "experiment/controller_build.hpp"
 #include "experiment/scenario_files.hpp"
 #include "experiment/sha256.hpp"
-#include "experiment/text_file.hpp"
 
 namespace thetad {
 
@@ -62,8 +63,7 @@ PreparedController Flight::prepare(const ControllerSpec& spec) const {
   context.reference = &scenario_.trajectory;
   context.duration = settings_.duration;
   context.controller_period = settings_.controller_period();
-  auto build = [&] { return ControllerRegistry::instance().build(spec.controller, spec.settings, context); };
-  BuiltController built = spec.settings_source.empty() ? build() : with_settings_source(spec.settings_source, build);
+  BuiltController built = build_controller(spec, context);
   return {spec, std::move(built.controller), built.settings, {}};
 }
 

@@ -3,6 +3,7 @@
 #include "controllers/registry.hpp"
 #include "core/error.hpp"
 #include "experiment/build_info.hpp"
+#include "experiment/controller_build.hpp"
 #include "experiment/result_json.hpp"
 #include "settings/settings.hpp"
 
@@ -15,8 +16,7 @@ PlantFlightResult fly_plant(const SdcPlant& plant, const ControllerSpec& spec, c
   apply(controls, settings);
   settings.actuator_limits.enabled = false;  // the helicopter's servos: nothing to do with a user's plant
   const ControllerContext context(plant, x0, 0.0);
-  auto build = [&] { return ControllerRegistry::instance().build(spec.controller, spec.settings, context); };
-  BuiltController built = spec.settings_source.empty() ? build() : with_settings_source(spec.settings_source, build);
+  BuiltController built = build_controller(spec, context);
   return {spec, built.settings, settings, x0, sim::simulate_plant(*built.controller, plant, reference, x0, settings)};
 }
 
@@ -47,7 +47,7 @@ RunFiles write_plant_run_files(const PlantFlightResult& result, const std::strin
     j["controller"] = result.spec.controller;
     j["controller_origin"] = ControllerRegistry::instance().origin(result.spec.controller);
     j["plant"] = plant;
-    j["status"] = run.status == sim::RunStatus::completed ? "completed" : "diverged";
+    j["status"] = sim::status_name(run.status);
     j["reason"] = run.reason;
     j["end_time_s"] = run.end_time;
     j["controller_samples"] = run.controller_samples;

@@ -6,7 +6,7 @@
 #include "experiment/flight.hpp"
 #include "experiment/result_json.hpp"
 #include "experiment/sha256.hpp"
-#include "experiment/text_file.hpp"
+#include "experiment/json_file.hpp"
 
 namespace thetad {
 
@@ -54,7 +54,7 @@ Replay replay(const std::filesystem::path& result_file, Progress* progress) {
                   " has changed since the run (its SHA-256 differs from the recorded one)");
     const Flight flight(scenario, controls_of(recorded.at("settings"), provenance.at("seed").get<std::uint64_t>()));
     ControllerSpec spec{recorded.at("label").get<std::string>(), recorded.at("controller").get<std::string>(),
-                        json_to_yaml(recorded.at("controller_settings")), result_file.string()};
+                        json_to_yaml(recorded.at("controller_settings")), result_file.string(), {}};
     PreparedController prepared = flight.prepare(spec);
     Replay outcome{flight.fly(prepared, progress), {}};
     const Json again = summary_json(outcome.result.summary);

@@ -53,7 +53,7 @@ Json settings_json(const sim::SimulationSettings& s) {
 std::string status_text(const sim::RunSummary& summary) {
   if (summary.status == sim::RunStatus::completed) return "completed";
   char text[64];
-  std::snprintf(text, sizeof text, "diverged at %.3f s", summary.end_time);
+  std::snprintf(text, sizeof text, "%s at %.3f s", sim::status_name(summary.status), summary.end_time);
   return text;
 }
 
@@ -62,7 +62,7 @@ Json summary_json(const sim::RunSummary& summary) {
   Json j;
   j["controller_name"] = summary.controller;
   j["seed"] = summary.settings.seed;
-  j["status"] = summary.status == sim::RunStatus::completed ? "completed" : "diverged";
+  j["status"] = sim::status_name(summary.status);
   j["reason"] = summary.reason;
   j["end_time_s"] = summary.end_time;
   j["controller_samples"] = summary.controller_samples;

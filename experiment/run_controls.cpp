@@ -59,6 +59,8 @@ void apply(const RunControls& controls, sim::SimulationSettings& settings) {
   set(controls.actuator_limits, settings.actuator_limits.enabled);
   if (controls.summary_only) settings.keep_log = !*controls.summary_only;
   if (controls.timing) settings.measure_compute_time = *controls.timing;
+  // Every override given, the whole checked together (e.g. the log of a long flight must fit).
+  settings.validate();
 }
 
 }  // namespace thetad

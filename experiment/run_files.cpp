@@ -15,7 +15,7 @@
 #include "core/error.hpp"
 #include "experiment/result_json.hpp"
 #include "experiment/sha256.hpp"
-#include "experiment/text_file.hpp"
+#include "experiment/json_file.hpp"
 
 namespace thetad {
 

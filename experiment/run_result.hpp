@@ -25,7 +25,7 @@ struct RunResult {
   bool completed() const { return summary.status == sim::RunStatus::completed; }
 };
 
-// "completed" or "diverged at 16.200 s".
+// "completed", "diverged at 16.200 s" or "failed at 3.000 s".
 std::string status_text(const sim::RunSummary& summary);
 
 }  // namespace thetad

@@ -1,16 +1,15 @@
 #include "scenarios/scenario.hpp"
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
-#include <cstring>
-#include <fstream>
 #include <sstream>
 
 #include <yaml-cpp/yaml.h>
 
 #include "settings/settings.hpp"
+#include "settings/yaml_document.hpp"
 #include "core/error.hpp"
+#include "core/text_file.hpp"
 #include "core/helicopter/state.hpp"
 
 namespace thetad {
@@ -263,25 +262,10 @@ sim::SimulationSettings Scenario::simulation_settings(sim::SimulationSettings ba
 }
 
 Scenario parse_scenario(const std::string& text, const std::string& source) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::Exception& error) {
-    // yaml-cpp's what() already carries "line L, column C" (0-based); print ours, 1-based.
-    std::ostringstream message;
-    message << source << ":" << error.mark.line + 1 << ":" << error.mark.column + 1 << ": invalid YAML: " << error.msg;
-    throw Error(message.str());
-  }
+  const YAML::Node root = parse_yaml(text, source);
   return with_settings_source(source, [&] { return read_scenario(root, source); });
 }
 
-Scenario load_scenario(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw Error("cannot read scenario file " + file.string() + ": " + std::strerror(errno));
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw Error("cannot read scenario file " + file.string() + ": read error");
-  return parse_scenario(text.str(), file.string());
-}
+Scenario load_scenario(const std::filesystem::path& file) { return parse_scenario(read_text_file(file), file.string()); }
 
 }  // namespace thetad

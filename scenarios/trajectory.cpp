@@ -16,6 +16,9 @@ template <class... Ts>
 struct Overloaded : Ts... {
   using Ts::operator()...;
 };
+// C++20 deduces this for an aggregate by itself; Clang 14 does not implement that yet.
+template <class... Ts>
+Overloaded(Ts...) -> Overloaded<Ts...>;
 
 void require_period(const std::string& phase, const char* type, double period) {
   if (!(period > 0.0) || !std::isfinite(period))

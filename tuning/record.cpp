@@ -10,6 +10,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "core/text_file.hpp"
 #include "tuning/parallel.hpp"
 #include "tuning/sigma_fit.hpp"
 
@@ -78,7 +79,7 @@ TuningRecord record_sdre_flight(const Flight& flight, const SdreController& sdre
                                 Progress* progress) {
   const sim::SimulationSettings& settings = flight.settings();
   const auto samples = static_cast<Eigen::Index>(std::llround(settings.duration / settings.controller_period()));
-  PreparedController prepared{{"sdre-record", "sdre", {}, {}}, std::make_unique<SdreRecorder>(sdre, every, samples), {}, {}};
+  PreparedController prepared{{"sdre-record", "sdre", {}, {}, {}}, std::make_unique<SdreRecorder>(sdre, every, samples), {}, {}};
   const RunResult run = flight.fly(prepared, progress, "sdre (record):");
   if (!run.completed())
     throw Error("tuning: the SDRE flight of " + flight.scenario().name + " diverged (" + run.summary.reason +
@@ -110,8 +111,13 @@ void write_record(const std::filesystem::path& file, const TuningRecord& record)
 }
 
 TuningRecord read_record(const std::filesystem::path& file, Eigen::Index n, Eigen::Index m) {
-  std::ifstream in(file);
-  if (!in) throw Error("cannot read tuning record " + file.string() + ": " + std::strerror(errno));
+  std::istringstream in([&] {
+    try {
+      return read_text_file(file);
+    } catch (const Error& error) {
+      throw Error(std::string("tuning record: ") + error.what());
+    }
+  }());
   const std::string source = file.string();
   const auto fail = [&](long line, const std::string& why) {
     throw Error(source + ":" + std::to_string(line) + ": " + why);

@@ -14,7 +14,7 @@ namespace thetad::app {
 CLI::App* add_compare_command(CLI::App& app, CompareArguments& arguments) {
   auto* compare = app.add_subcommand(
       "compare", "Fly several controllers through a scenario on the same seed; print a table, write "
-                 "<out>/comparison.json. Exit code 0: all completed, 3: any diverged");
+                 "<out>/comparison.json. Exit code 0: all completed, 3: any diverged or failed");
   add_flight_options(*compare, arguments.flight);
   compare->add_option("--controllers", arguments.controllers,
                       "Comma-separated NAME, LABEL=NAME or LABEL=NAME:SETTINGS.yaml "

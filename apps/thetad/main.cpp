@@ -1,6 +1,7 @@
 // The thetad command line. Every thetad::Error becomes one clear line on stderr and exit code 1;
 // a flight that diverged is exit code 3 (run_command.hpp).
 #include <CLI/CLI.hpp>
+#include <csignal>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -16,6 +17,9 @@
 #include "experiment/plugins.hpp"
 
 int main(int argc, char** argv) {
+  // Over a file size limit (ulimit -f) a write would end the process by SIGXFSZ, leaving a partial
+  // file behind; ignored, the write fails with EFBIG and the writer reports it and cleans up.
+  std::signal(SIGXFSZ, SIG_IGN);
   CLI::App app{"thetad: theta-D, SDRE and LQR control of the X-Cell miniature helicopter"};
   app.set_version_flag("--version", thetad::version_line());
   app.require_subcommand(1);
@@ -49,7 +53,12 @@ int main(int argc, char** argv) {
   thetad::app::BenchArguments bench_arguments;
   auto* bench = thetad::app::add_bench_command(app, bench_arguments);
 
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    // --help and --version end here with 0; a bad argument is an error like any other: 1.
+    return app.exit(error) == 0 ? 0 : 1;
+  }
   try {
     for (const auto& library : thetad::plugins_from_environment()) thetad::load_plugin(library);
     for (const auto& library : plugins) thetad::load_plugin(library);

@@ -12,7 +12,7 @@
 #include "experiment/replay.hpp"
 #include "experiment/result_json.hpp"
 #include "experiment/run_files.hpp"
-#include "experiment/text_file.hpp"
+#include "experiment/json_file.hpp"
 
 namespace thetad::app {
 
@@ -97,7 +97,7 @@ int run_plant(const RunArguments& arguments) {
   const sim::PlantRun& run = result.run;
   std::printf("%s on plant %s (%g s): %s%s%s; cost J = %.6g over %lld controller samples.\n", spec.label.c_str(),
               arguments.plant.c_str(), result.simulation.duration,
-              run.status == sim::RunStatus::completed ? "completed" : "diverged", run.reason.empty() ? "" : ": ",
+              sim::status_name(run.status), run.reason.empty() ? "" : ": ",
               run.reason.c_str(), run.cost, static_cast<long long>(run.controller_samples));
   std::printf("Wrote %s.\n", files.json.c_str());
   return run.status == sim::RunStatus::completed ? kExitCompleted : kExitDiverged;
@@ -150,7 +150,7 @@ RunControls run_controls(const FlightOptions& options) {
 CLI::App* add_run_command(CLI::App& app, RunArguments& arguments) {
   auto* run = app.add_subcommand(
       "run", "Fly one controller through a scenario; write <out>/<label>.csv and .json. Exit code 0: completed, "
-             "3: diverged");
+             "3: diverged or the controller failed");
   add_flight_options(*run, arguments.flight, false);
   run->add_option("--controller", arguments.controller,
                   "NAME, LABEL=NAME, NAME:SETTINGS.yaml or LABEL=NAME:SETTINGS.yaml (see thetad list)");

@@ -58,7 +58,7 @@ PreparedController make_theta_d(const Flight& flight, const YAML::Node& base, co
   const auto values = [](const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); };
   if (k.size() > 0) block[theta_d_keys::k] = values(k);
   if (l.size() > 0) block[theta_d_keys::l] = values(l);
-  return flight.prepare({label, "theta-d", block, {}});
+  return flight.prepare({label, "theta-d", block, {}, {}});
 }
 
 tuning::FitOptions fit_options(const TuneArguments& a, std::uint64_t seed) {

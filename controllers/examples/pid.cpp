@@ -59,6 +59,7 @@ std::unique_ptr<Controller> make_example_pid(const Settings& fields, const Contr
   gains.roll = fields.vector("roll_gains", gains.roll, 2, 0.0);
   gains.pitch = fields.vector("pitch_gains", gains.pitch, 2, 0.0);
   gains.yaw = fields.vector("yaw_gains", gains.yaw, 2, 0.0);
+  if (context.settings_only) return nullptr;
   // Hover at the start's altitude and heading: the trim gives the attitude and inputs that hold it.
   const Eigen::VectorXd& x0 = context.initial_state;
   if (x0.size() != kStateDim) throw Error("example-pid: initial state has " + std::to_string(x0.size()) + " entries, not 18");

@@ -30,12 +30,18 @@ PlantRun simulate_plant(ControlLaw& law, const SdcPlant& plant, const ReferenceT
 
   PlantRun run;
   const std::int64_t rows = settings.keep_log ? (samples + settings.log_every - 1) / settings.log_every : 0;
+  check_run_memory(8.0 * static_cast<double>(rows) * static_cast<double>(1 + n + m), rows);
   run.log.resize(rows, 1 + n + m);
   Eigen::VectorXd x = x0, u(m), v(n);
   Rk4Workspace workspace(n);
   PositionIntegral integral;
-  law.reset(x0, 0.0);
   double t = 0.0;
+  try {
+    law.reset(x0, 0.0);
+  } catch (const std::exception& error) {
+    run.reason = at_time(std::string("controller failed: ") + error.what(), t);
+    run.status = RunStatus::failed;
+  }
   for (std::int64_t k = 0; k < samples && run.reason.empty(); ++k) {
     t = static_cast<double>(k) * period;
     const Eigen::Vector3d position = reference.position(t);
@@ -43,8 +49,9 @@ PlantRun simulate_plant(ControlLaw& law, const SdcPlant& plant, const ReferenceT
     try {
       law.control(t, x, now, u);
       if (!u.allFinite()) throw Error("non-finite command");
-    } catch (const Error& error) {
+    } catch (const std::exception& error) {
       run.reason = at_time(std::string("controller failed: ") + error.what(), t);
+      run.status = RunStatus::failed;
       break;
     }
     plant.tracking_vector(x, now, v);
@@ -65,7 +72,7 @@ PlantRun simulate_plant(ControlLaw& law, const SdcPlant& plant, const ReferenceT
     }
   }
   if (!run.reason.empty()) {
-    run.status = RunStatus::diverged;
+    if (run.status != RunStatus::failed) run.status = RunStatus::diverged;
     if (settings.keep_log)
       run.log.conservativeResize((run.controller_samples + settings.log_every - 1) / settings.log_every, Eigen::NoChange);
   }

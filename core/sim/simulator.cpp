@@ -95,21 +95,11 @@ std::string failure_reason(const char* source, const std::exception& error, doub
   return buffer + std::string(error.what());
 }
 
-// Reserves the log for the whole run, so that the step loop allocates nothing; bounded up front, so
-// that a flight too long to log fails now with advice instead of with bad_alloc later.
+// Reserves the log for the whole run, so that the step loop allocates nothing (its size was
+// bounded by validate()).
 void reserve_log(const SimulationSettings& settings, std::int64_t samples, RunLog& log) {
   const std::int64_t rows = settings.keep_log ? (samples + settings.log_every - 1) / settings.log_every : 0;
-  const auto columns = static_cast<std::int64_t>(log_schema().size());
-  const double bytes = 8.0 * static_cast<double>(rows * columns + (settings.measure_compute_time ? samples : 0));
-  if (bytes > SimulationSettings::kMaxRunMemory) {
-    char advice[320];
-    std::snprintf(advice, sizeof advice,
-                  "simulate: this flight's log would need %.1f GiB (%lld logged samples), more than the %.0f GiB a run "
-                  "may hold: log every N-th sample (log_every, --log-every) or only the summary (--summary-only)",
-                  bytes / (1 << 30), static_cast<long long>(rows), SimulationSettings::kMaxRunMemory / (1 << 30));
-    throw Error(advice);
-  }
-  log.values.reserve(static_cast<std::size_t>(rows * columns));
+  log.values.reserve(static_cast<std::size_t>(rows) * log_schema().size());
 }
 
 // What a run's summary says before it flies: the law, the settings, the model's switches and the
@@ -195,6 +185,25 @@ void append_row(double t, const Eigen::Vector3d& command_position, const Eigen::
 
 }  // namespace
 
+void check_run_memory(double bytes, std::int64_t logged_rows) {
+  if (bytes <= SimulationSettings::kMaxRunMemory) return;
+  char advice[320];
+  std::snprintf(advice, sizeof advice,
+                "simulate: this flight's log would need %.1f GiB (%lld logged samples), more than the %.0f GiB a run "
+                "may hold: log every N-th sample (log_every, --log-every) or only the summary (--summary-only)",
+                bytes / (1 << 30), static_cast<long long>(logged_rows), SimulationSettings::kMaxRunMemory / (1 << 30));
+  throw Error(advice);
+}
+
+const char* status_name(RunStatus status) {
+  switch (status) {
+    case RunStatus::completed: return "completed";
+    case RunStatus::diverged: return "diverged";
+    case RunStatus::failed: return "failed";
+  }
+  return "unknown";
+}
+
 void SimulationSettings::validate() const {
   if (!(dt > 0.0) || !std::isfinite(dt)) throw Error("simulate: dt must be positive and finite");
   if (controller_period_steps < 1) throw Error("simulate: controller_period_steps must be at least 1");
@@ -205,6 +214,12 @@ void SimulationSettings::validate() const {
   if (duration / controller_period() > 1e10)
     throw Error("simulate: the controller period is too short for the duration (more than 1e10 samples)");
   if (actuator_limits.enabled) actuator_limits.validate();
+  // The log is held whole: bounded here, so that a flight too long to log fails before it flies,
+  // with advice, instead of with bad_alloc hours in.
+  const auto samples = static_cast<std::int64_t>(std::llround(duration / controller_period()));
+  const std::int64_t rows = keep_log ? (samples + log_every - 1) / log_every : 0;
+  const auto columns = static_cast<std::int64_t>(log_schema().size());
+  check_run_memory(8.0 * static_cast<double>(rows * columns + (measure_compute_time ? samples : 0)), rows);
 }
 
 SimulationSettings SimulationSettings::ideal() {
@@ -255,8 +270,14 @@ RunResult simulate(ControlLaw& law, const ReferenceTrajectory& reference, const 
   SampleDraws draws;
   PositionIntegral reference_integral, measured_integral, true_error_integral;
 
-  law.reset(x0, 0.0);
   std::optional<std::string> failure = divergence(x, settings.limits, 0.0);
+  bool controller_failed = false;
+  try {
+    law.reset(x0, 0.0);
+  } catch (const std::exception& error) {
+    failure = failure_reason("controller", error, 0.0);
+    controller_failed = true;
+  }
   double t = 0.0;
   for (std::int64_t k = 0; k < samples && !failure; ++k) {
     t = static_cast<double>(k) * period;
@@ -272,8 +293,11 @@ RunResult simulate(ControlLaw& law, const ReferenceTrajectory& reference, const 
       elapsed_ns = call_control(law, t, measured, Reference{position_command, reference_integral.value}, command,
                                 settings.measure_compute_time);
       if (!command.allFinite()) throw Error("non-finite command");
-    } catch (const Error& error) {
+    } catch (const std::exception& error) {
+      // Whatever a user's controller throws (a plug-in's own exception types too) ends this run,
+      // not the program: the other runs of a comparison go on.
       failure = failure_reason("controller", error, t);
+      controller_failed = true;
       break;
     }
     apply_actuator_noise(command, draws, levels, settings.noise, applied);
@@ -301,7 +325,7 @@ RunResult simulate(ControlLaw& law, const ReferenceTrajectory& reference, const 
   }
 
   if (failure) {
-    summary.status = RunStatus::diverged;
+    summary.status = controller_failed ? RunStatus::failed : RunStatus::diverged;
     summary.reason = *failure;
     summary.end_time = t;
   } else {

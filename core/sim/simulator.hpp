@@ -46,7 +46,8 @@ struct SimulationSettings {
   std::uint64_t seed = 1;
 
   double controller_period() const { return dt * controller_period_steps; }
-  // Throws thetad::Error naming the first setting out of range.
+  // Throws thetad::Error naming the first setting out of range, or with advice when the run's log
+  // would hold more than kMaxRunMemory.
   void validate() const;
 
   // One simulated day: longer flights are a mistake in a file, not a study.
@@ -84,14 +85,23 @@ struct RunLog {
   }
 };
 
-enum class RunStatus { completed, diverged };
+// diverged: the state left the divergence limits or the plant failed; failed: the controller threw
+// or returned a non-finite command (a fault of the controller, not of the closed loop).
+enum class RunStatus { completed, diverged, failed };
+
+// Throws thetad::Error with advice (log every N-th sample, or only the summary) when a run would
+// hold more than SimulationSettings::kMaxRunMemory bytes of log (`logged_rows` rows in `bytes`).
+void check_run_memory(double bytes, std::int64_t logged_rows);
+
+// "completed", "diverged" or "failed", as result files write it.
+const char* status_name(RunStatus status);
 
 struct RunSummary {
   std::string controller;
   SimulationSettings settings;
   RunStatus status = RunStatus::completed;
-  std::string reason;     // why the run diverged (with the time); empty when completed
-  double end_time = 0.0;  // duration when completed, else the time of divergence (s)
+  std::string reason;     // why the run diverged or failed (with the time); empty when completed
+  double end_time = 0.0;  // duration when completed, else the time it diverged or failed (s)
   std::string model_options;  // heli::ModelOptions::to_string() of the plant
   // The Table 1 parameter factors p_true / p_nom of this run, in table order; empty when
   // parameter_uncertainty is off.

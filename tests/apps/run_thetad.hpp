@@ -26,12 +26,14 @@ struct Output {
 };
 
 // `environment` (VAR=value ...) and thetad with `arguments` (a shell command-line tail), CI set so
-// that progress comes as plain lines, in the working folder `cwd` (default: the current one);
-// stdout and stderr are captured through files in `directory`.
+// that progress comes as plain lines, in the working folder `cwd` (default: the current one), run
+// through `launcher` (a command prefix, e.g. one setting a resource limit) when given; stdout and
+// stderr are captured through files in `directory`.
 inline Output run_thetad(const std::filesystem::path& directory, const std::string& arguments,
-                         const std::string& environment = "", const std::filesystem::path& cwd = {}) {
+                         const std::string& environment = "", const std::filesystem::path& cwd = {},
+                         const std::string& launcher = "") {
   const std::string change = cwd.empty() ? std::string() : "cd '" + cwd.string() + "' && ";
-  const std::string command = change + "CI=1 " + environment + " " + std::string(THETAD_BINARY) + " " + arguments +
+  const std::string command = change + "CI=1 " + environment + " " + launcher + std::string(THETAD_BINARY) + " " + arguments +
                               " >" + (directory / "stdout.txt").string() + " 2>" + (directory / "stderr.txt").string();
   const int raw = std::system(command.c_str());
   return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, read_text(directory / "stdout.txt"),

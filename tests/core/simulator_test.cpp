@@ -181,9 +181,9 @@ TEST(Simulator, TimingChangesOnlyTheComputeColumn) {
   }
 }
 
-void expect_diverged_with_finite_rows(const RunResult& result, const std::string& reason_part, double t_min,
-                                      double t_max) {
-  EXPECT_EQ(result.summary.status, RunStatus::diverged);
+void expect_ended_with_finite_rows(const RunResult& result, RunStatus status, const std::string& reason_part,
+                                   double t_min, double t_max) {
+  EXPECT_EQ(result.summary.status, status);
   EXPECT_NE(result.summary.reason.find(reason_part), std::string::npos) << result.summary.reason;
   EXPECT_GE(result.summary.end_time, t_min);
   EXPECT_LE(result.summary.end_time, t_max);
@@ -205,7 +205,7 @@ TEST_F(SimulatorFiles, FallingThroughTheGroundDivergesWithReasonAndFiniteRows) {
   SimulationSettings settings = SimulationSettings::ideal();
   settings.duration = 3.0;
   const RunResult result = simulate(falling, kHoverPoint, x0, settings);
-  expect_diverged_with_finite_rows(result, "ground penetration", 0.75, 1.0);
+  expect_ended_with_finite_rows(result, RunStatus::diverged, "ground penetration", 0.75, 1.0);
   const thetad::RunFiles files = write_run(result, directory_, "fall");
   const auto rows = read_csv_rows(files.csv);
   EXPECT_EQ(static_cast<Eigen::Index>(rows.size()), result.log.rows());
@@ -223,10 +223,12 @@ TEST(Simulator, HugePedalSpinsItUpToTheYawRateLimit) {
   SimulationSettings settings = SimulationSettings::ideal();
   settings.duration = 2.0;
   const RunResult result = simulate(spin, kHoverPoint, hover_trim_state(), settings);
-  expect_diverged_with_finite_rows(result, "yaw rate |r|", 0.0, 1.0);
+  expect_ended_with_finite_rows(result, RunStatus::diverged, "yaw rate |r|", 0.0, 1.0);
 }
 
-TEST(Simulator, ControllerErrorEndsTheRunAsDiverged) {
+// A controller that throws (whatever it throws) ends its run as failed, not diverged: the fault is
+// the controller's, not the closed loop's.
+TEST(Simulator, ControllerErrorEndsTheRunAsFailed) {
   class Failing final : public ControlLaw {
    public:
     std::string name() const override { return "failing"; }
@@ -240,7 +242,7 @@ TEST(Simulator, ControllerErrorEndsTheRunAsDiverged) {
   SimulationSettings settings = SimulationSettings::ideal();
   settings.duration = 0.2;
   const RunResult result = simulate(failing, kHoverPoint, hover_trim_state(), settings);
-  expect_diverged_with_finite_rows(result, "controller failed at t = 0.0500 s: CARE", 0.05, 0.05);
+  expect_ended_with_finite_rows(result, RunStatus::failed, "controller failed at t = 0.0500 s: CARE", 0.05, 0.05);
   EXPECT_EQ(result.summary.controller_samples, 50);
 }
 
@@ -272,7 +274,7 @@ TEST(Simulator, NonFiniteInitialStateStopsBeforeTheFirstSample) {
   Eigen::VectorXd x0 = hover_trim_state();
   x0[kU] = std::nan("");
   const RunResult result = simulate(hold, kHoverPoint, x0, SimulationSettings::ideal());
-  expect_diverged_with_finite_rows(result, "non-finite state", 0.0, 0.0);
+  expect_ended_with_finite_rows(result, RunStatus::diverged, "non-finite state", 0.0, 0.0);
   EXPECT_EQ(result.log.rows(), 0);
 }
 

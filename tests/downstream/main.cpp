@@ -32,10 +32,10 @@ int main(int argc, char** argv) {
   two_seconds.duration = 2.0;
   two_seconds.summary_only = true;
   const thetad::Flight flight(argv[1], two_seconds);
-  thetad::PreparedController theta_d = flight.prepare({"theta-d", "theta-d", {}, {}});
+  thetad::PreparedController theta_d = flight.prepare({"theta-d", "theta-d", {}, {}, {}});
   const thetad::RunResult run = flight.fly(theta_d);
   std::printf("downstream: %s on %s for 2 s: %s, %lld samples, RMS z error %.4f m\n", run.spec.label.c_str(),
-              flight.scenario().name.c_str(), run.completed() ? "completed" : "diverged",
+              flight.scenario().name.c_str(), thetad::sim::status_name(run.summary.status),
               static_cast<long long>(run.summary.controller_samples), run.summary.rms_tracking_error.z());
   const bool flew = run.completed() && run.summary.controller_samples == 2000 && run.log.rows() == 0;
   return error < 1e-10 && std::abs(u(0) - 80.77) < 0.1 && flew ? 0 : 1;

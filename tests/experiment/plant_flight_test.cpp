@@ -70,11 +70,11 @@ TEST(PlantFlight, ControllersThatNeedTheHelicopterAndBadRunsAreClear) {
               }),
               HasSubstr("must give a duration"));
   // A plant the controller cannot stabilize (no input authority): the SDRE's CARE fails at the first
-  // sample and the run ends there, as diverged, with the reason.
+  // sample and the run ends there, as failed (the controller's fault), with the reason.
   const testing::ScalarPlant uncontrollable([](double) { return 5.0; }, [](double, double) { return 0.0; }, false);
   const PlantFlightResult flown =
       fly_plant(uncontrollable, parse_controller_spec("sdre"), Eigen::VectorXd::Ones(1), kOrigin, seconds(10.0));
-  EXPECT_EQ(flown.run.status, sim::RunStatus::diverged);
+  EXPECT_EQ(flown.run.status, sim::RunStatus::failed);
   EXPECT_THAT(flown.run.reason, HasSubstr("controller failed"));
   EXPECT_EQ(flown.run.controller_samples, 0);
 }

@@ -225,7 +225,7 @@ TEST(Scenario, MissingFileAndBadYamlAreOneClearLine) {
     FAIL() << "no error";
   } catch (const Error& error) {
     EXPECT_EQ(std::string(error.what()),
-              "cannot read scenario file /nonexistent/scenario.yaml: No such file or directory");
+              "cannot read /nonexistent/scenario.yaml: No such file or directory");
   }
   EXPECT_THAT(error_of("name: test\nduration: [12\n"), HasSubstr("test.yaml:3:1: invalid YAML: "));
 }

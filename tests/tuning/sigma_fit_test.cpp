@@ -76,7 +76,7 @@ TEST(SigmaFit, TunedResidualOnARealRecordIsNoWorse) {
   three_seconds.duration = 3.0;
   three_seconds.summary_only = true;
   const Flight flight(THETAD_SOURCE_DIR "/scenarios/scenario-1.yaml", three_seconds);
-  const PreparedController sdre = flight.prepare({"sdre", "sdre", {}, {}});
+  const PreparedController sdre = flight.prepare({"sdre", "sdre", {}, {}, {}});
   const TuningRecord record = record_sdre_flight(flight, dynamic_cast<const SdreController&>(*sdre.controller), 10, 2);
   ASSERT_EQ(record.size(), 300);
   const SigmaMatch match(heli.make(3), record, 2);
@@ -134,8 +134,7 @@ TEST_F(RecordFile, BadFilesGiveClearErrors) {
   try {
     read_record(dir_ / "missing.csv", 2, 1);
   } catch (const Error& error) {
-    EXPECT_THAT(error.what(), HasSubstr("cannot read tuning record"));
-    EXPECT_THAT(error.what(), HasSubstr("missing.csv"));
+    EXPECT_THAT(error.what(), HasSubstr("tuning record: cannot read " + (dir_ / "missing.csv").string()));
   }
   EXPECT_THAT(read_error("t,x\n"), HasSubstr(":1: not a thetad tuning record"));
   EXPECT_THAT(read_error(head_.substr(0, head_.rfind("t_s")) + "t_s,x_0,u_0,sigma_max_P\n0,1,2,3\n"),

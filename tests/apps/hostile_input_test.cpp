@@ -1,0 +1,193 @@
+// What a new user gets for the inputs that used to crash, hang or lie (issue "Hostile input"):
+// one line on stderr naming the file, the line and the field, a non-zero exit code, and no output
+// folder or file left behind. Each test is one class of bad input, run through the real program.
+
+#include <sys/stat.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "tests/apps/run_thetad.hpp"
+#include "tests/scratch_directory.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+using ::testing::MatchesRegex;
+using ::testing::Not;
+using thetad::testing::Output;
+
+void write(const fs::path& file, const std::string& text) { std::ofstream(file, std::ios::binary) << text; }
+
+constexpr const char* kHover = "name: tiny\nduration: 0.2\nphases:\n  - name: hover\n    type: hold\n    time: [0, 0.2]\n";
+
+class HostileInput : public ::testing::Test {
+ protected:
+  void SetUp() override { write(dir_ / "hover.yaml", kHover); }
+
+  Output thetad(const std::string& arguments) const { return thetad::testing::run_thetad(dir_, arguments); }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  std::string run(const std::string& scenario, const std::string& controller) const {
+    return "run --scenario " + path(scenario) + " --controller " + controller + " --out " + path("out");
+  }
+
+  // Refused: non-zero exit, one line, and nothing written.
+  void expect_refused(const Output& output) const {
+    EXPECT_EQ(output.status, 1) << output.err;
+    EXPECT_THAT(output.err, MatchesRegex("thetad: error: [^\n]*\n")) << output.err;
+    EXPECT_FALSE(fs::exists(dir_ / "out")) << "an output folder was left behind";
+  }
+
+  thetad::testing::ScratchDirectory scratch_{"thetad_hostile_input_test"};
+  const fs::path dir_ = scratch_.path();
+};
+
+TEST_F(HostileInput, AnImpossibleDurationIsRefusedBeforeFlyingNamingTheField) {
+  write(dir_ / "long.yaml", std::string(kHover) + "simulation:\n  duration: 1e308\n");
+  Output output = thetad(run("long.yaml", "lqr"));
+  expect_refused(output);
+  EXPECT_THAT(output.err, HasSubstr(path("long.yaml") + ":8:13: field 'simulation.duration'"));
+  EXPECT_THAT(output.err, HasSubstr("86400"));
+
+  // Within the cap but with a log too large for memory: advice, before anything is allocated.
+  output = thetad(run("hover.yaml", "lqr") + " --duration 80000");
+  expect_refused(output);
+  EXPECT_THAT(output.err, HasSubstr("--log-every"));
+  EXPECT_THAT(output.err, HasSubstr("--summary-only"));
+}
+
+TEST_F(HostileInput, ADesignFailureNamesTheControllerTheSettingsFileAndTheReason) {
+  // Q = 0 leaves the integral states (eigenvalues 0) unobserved: no stabilising CARE solution.
+  write(dir_ / "zero-q.yaml", "theta-d:\n  Q: [0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0]\n");
+  const Output output = thetad(run("hover.yaml", "blind=theta-d:" + path("zero-q.yaml")));
+  expect_refused(output);
+  EXPECT_THAT(output.err, HasSubstr("controller 'blind' (theta-d, settings " + path("zero-q.yaml") + ":2:3)"));
+  EXPECT_THAT(output.err, HasSubstr("CARE"));
+}
+
+TEST_F(HostileInput, ADtThatDoesNotDivideTheControllerPeriodNamesTheField) {
+  write(dir_ / "dt.yaml", std::string(kHover) + "simulation:\n  dt: 0.0003\n");
+  const Output output = thetad(run("dt.yaml", "lqr"));
+  expect_refused(output);
+  EXPECT_THAT(output.err, HasSubstr(path("dt.yaml") + ":8:7: field 'simulation.dt'"));
+}
+
+TEST_F(HostileInput, SeedsAreUnsigned64BitNumbersOrAnError) {
+  for (const char* seed : {"-1", "18446744073709551616", "''", "1.5", "0x10"}) {
+    const Output output = thetad(run("hover.yaml", "lqr") + " --seed " + seed);
+    expect_refused(output);
+    EXPECT_THAT(output.err, HasSubstr("--seed")) << seed;
+  }
+  write(dir_ / "seed.yaml", std::string(kHover) + "simulation:\n  seed: -1\n");
+  const Output output = thetad(run("seed.yaml", "lqr"));
+  expect_refused(output);
+  EXPECT_THAT(output.err, HasSubstr(path("seed.yaml") + ":8:9: field 'simulation.seed'"));
+}
+
+TEST_F(HostileInput, ADuplicateKeyNamesBothLines) {
+  write(dir_ / "dup.yaml", "theta-d:\n  terms: 3\n  fixed_point_iterations: 2\n  terms: 2\n");
+  Output output = thetad(run("hover.yaml", "theta-d:" + path("dup.yaml")));
+  expect_refused(output);
+  EXPECT_THAT(output.err, HasSubstr(path("dup.yaml") + ":4:3: key 'terms' given twice in one map (first at line 2)"));
+
+  write(dir_ / "dup-scenario.yaml", std::string(kHover) + "duration: 0.1\n");
+  output = thetad(run("dup-scenario.yaml", "lqr"));
+  expect_refused(output);
+  EXPECT_THAT(output.err, HasSubstr(path("dup-scenario.yaml") + ":7:1: key 'duration' given twice in one map (first at line 2)"));
+}
+
+TEST_F(HostileInput, DirectoriesDevicesAndFifosAreNotInputFiles) {
+  fs::create_directory(dir_ / "folder.yaml");
+  Output output = thetad(run("hover.yaml", "lqr") + " --settings " + path("folder.yaml"));
+  expect_refused(output);
+  EXPECT_THAT(output.err, HasSubstr(path("folder.yaml") + ": a directory, not a regular file"));
+
+  // Read forever before: now refused at once.
+  output = thetad("run --scenario /dev/zero --controller lqr --out " + path("out"));
+  expect_refused(output);
+  EXPECT_THAT(output.err, HasSubstr("/dev/zero"));
+
+  ASSERT_EQ(mkfifo((dir_ / "pipe.yaml").c_str(), 0600), 0);
+  output = thetad(run("hover.yaml", "theta-d:" + path("pipe.yaml")));
+  expect_refused(output);
+  EXPECT_THAT(output.err, HasSubstr(path("pipe.yaml") + ": a FIFO (named pipe), not a regular file"));
+}
+
+TEST_F(HostileInput, AnInputFileOverTheSizeCapIsRefusedUnread) {
+  {
+    std::ofstream big(dir_ / "big.yaml", std::ios::binary);
+    big << "# padding\n";
+    big.seekp((std::streamoff{64} << 20) + 1);
+    big << '\n';
+  }
+  const Output output = thetad(run("big.yaml", "lqr"));
+  expect_refused(output);
+  EXPECT_THAT(output.err, HasSubstr(path("big.yaml") + ": 67108866 bytes, more than the 64 MiB"));
+}
+
+TEST_F(HostileInput, ATypoInABlockThatThisRunDoesNotFlyIsFoundNow) {
+  write(dir_ / "settings.yaml", "theta-d:\n  terms: 3\nsdre:\n  mdoe: warm\n");
+  Output output = thetad(run("hover.yaml", "theta-d:" + path("settings.yaml")));
+  expect_refused(output);
+  EXPECT_THAT(output.err, HasSubstr(path("settings.yaml") + ":4:3: field 'mdoe'"));
+
+  // The same through --settings, and a bad value rather than a bad key.
+  write(dir_ / "settings.yaml", "lqr: {}\nsdre:\n  mode: warn\n");
+  output = thetad(run("hover.yaml", "lqr") + " --settings " + path("settings.yaml"));
+  expect_refused(output);
+  EXPECT_THAT(output.err, HasSubstr(path("settings.yaml") + ":3:9: field 'mode'"));
+}
+
+TEST_F(HostileInput, NamesAndLabelsMustBeValidUtf8) {
+  write(dir_ / "name.yaml", "name: \"bad\xff\"\n" + std::string(kHover).substr(std::string(kHover).find('\n') + 1));
+  Output output = thetad(run("name.yaml", "lqr"));
+  expect_refused(output);
+  EXPECT_THAT(output.err, HasSubstr(path("name.yaml") + ":1:11: not valid UTF-8"));
+
+  output = thetad(run("hover.yaml", "$'caf\\xc3'=lqr"));
+  expect_refused(output);
+  EXPECT_THAT(output.err, HasSubstr("label"));
+}
+
+TEST_F(HostileInput, AControllerThatThrowsOrReturnsNanFailsItsRunAndTheOthersGoOn) {
+  write(dir_ / "faults.yaml", "faulty:\n  fault: throw\n  at: 0.05\n");
+  write(dir_ / "nan.yaml", "faulty:\n  fault: nan\n  at: 0.1\n");
+  const Output output = thetad("compare --plugin " + std::string(THETAD_FAULTY_PLUGIN) + " --scenario " + path("hover.yaml") +
+                               " --controllers thrower=faulty:" + path("faults.yaml") + ",lqr,nan=faulty:" + path("nan.yaml") +
+                               " --out " + path("out"));
+  EXPECT_EQ(output.status, 3) << output.err;
+  EXPECT_THAT(output.err, Not(HasSubstr("error")));
+  const auto result = [&](const std::string& label) {
+    return nlohmann::json::parse(thetad::testing::read_text(dir_ / "out" / (label + ".json")));
+  };
+  const auto thrower = result("thrower"), good = result("lqr"), nan = result("nan");
+  EXPECT_EQ(thrower["status"], "failed");
+  EXPECT_EQ(thrower["reason"], "controller failed at t = 0.0500 s: the user's code threw");
+  EXPECT_EQ(nan["status"], "failed");
+  EXPECT_EQ(nan["reason"], "controller failed at t = 0.1000 s: non-finite command");
+  EXPECT_EQ(good["status"], "completed");
+  EXPECT_THAT(output.out, HasSubstr("thrower"));
+  EXPECT_THAT(output.out, HasSubstr("failed at 0.050 s"));
+  // The log of a failed run ends before the failure: no NaN row.
+  EXPECT_EQ(thetad::testing::read_text(dir_ / "out" / "nan.csv").find("nan"), std::string::npos);
+}
+
+TEST_F(HostileInput, AFileSizeLimitWhileWritingIsAClearErrorAndLeavesNoPartialFile) {
+  // ulimit -f counts 1024-byte blocks: 16 KiB holds the JSON but not the log of 200 samples.
+  const std::string command = "bash -c 'ulimit -f 16; exec \"$0\" \"$@\"' ";
+  const Output output = thetad::testing::run_thetad(
+      dir_, run("hover.yaml", "lqr"), "", {}, command);
+  EXPECT_EQ(output.status, 1) << output.err;
+  EXPECT_THAT(output.err, HasSubstr("cannot write " + path("out/lqr.csv") + ": File too large"));
+  ASSERT_TRUE(fs::is_directory(dir_ / "out"));  // created and probed before flying
+  EXPECT_TRUE(fs::is_empty(dir_ / "out")) << "a partial or unpaired file was left behind";
+}
+
+}  // namespace
