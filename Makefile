@@ -4,7 +4,8 @@ SANITIZE ?= 0
 
 ifeq ($(SANITIZE),1)
 BUILD_DIR ?= build-sanitize
-CMAKE_FLAGS += -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTHETAD_SANITIZE=ON -DTHETAD_BUILD_BENCH=OFF
+# No Python module: an instrumented library cannot be loaded by an uninstrumented interpreter.
+CMAKE_FLAGS += -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTHETAD_SANITIZE=ON -DTHETAD_BUILD_BENCH=OFF -DTHETAD_BUILD_PYTHON=OFF
 else
 BUILD_DIR ?= build
 CMAKE_FLAGS += -DCMAKE_BUILD_TYPE=Release

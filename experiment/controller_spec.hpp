@@ -18,7 +18,7 @@ struct ControllerSpec {
   std::string settings_source;  // the file the block came from, for messages and provenance; "" when none
   // The whole settings file the block came from (null when none, or an inline block): its other
   // blocks are checked too when the controller is built (build_controller).
-  YAML::Node settings_file;
+  YAML::Node settings_file{};
 };
 
 // A settings file: a map from controller name to that controller's settings block (what `thetad
