@@ -31,11 +31,11 @@ using ::testing::AllOf;
 using ::testing::AnyOf;
 using ::testing::HasSubstr;
 using testing::error_message;
+using testing::scalar;
 using testing::expect_valid_care;
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 
-MatrixXd scalar(double v) { return MatrixXd::Constant(1, 1, v); }
 
 // The documented formula, evaluated here independently of the solver, in long double with G
 // formed explicitly. Not in double: there, forming G = B R⁻¹ B' and P G P loses what the residual

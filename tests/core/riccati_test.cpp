@@ -28,9 +28,9 @@ using Eigen::MatrixXd;
 using Eigen::VectorXd;
 using ::testing::HasSubstr;
 using testing::error_message;
+using testing::scalar;
 using testing::expect_valid_care;
 
-MatrixXd scalar(double v) { return MatrixXd::Constant(1, 1, v); }
 
 const std::pair<CareMethod, const char*> kMethods[] = {
     {CareMethod::automatic, "automatic"}, {CareMethod::matrix_sign, "matrix_sign"}, {CareMethod::schur, "schur"}};
