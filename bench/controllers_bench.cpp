@@ -31,6 +31,7 @@
 #include "controllers/sdre.hpp"
 #include "controllers/theta_d.hpp"
 #include "core/helicopter/helicopter.hpp"
+#include "core/sim/recording_law.hpp"
 #include "core/sim/simulator.hpp"
 #include "scenarios/scenario.hpp"
 
@@ -42,29 +43,7 @@ namespace heli = thetad::heli;
 constexpr double kRecordFrom = 13.0;
 constexpr double kRecordTo = 15.0;
 
-struct Sample {
-  double t;
-  Eigen::VectorXd state;  // measured (noisy) 18-state
-  thetad::Reference reference;
-  Eigen::VectorXd input;  // what the recorded controller commanded
-};
-
-// Passes every call on to the controller it wraps and keeps the ones inside the window.
-class RecordingLaw final : public thetad::ControlLaw {
- public:
-  RecordingLaw(thetad::Controller& inner, std::vector<Sample>& samples) : inner_(inner), samples_(samples) {}
-  std::string name() const override { return inner_.name(); }
-  void reset(const Eigen::VectorXd& x0, double t0) override { inner_.reset(x0, t0); }
-  void control(double t, const Eigen::Ref<const Eigen::VectorXd>& measured, const thetad::Reference& reference,
-               Eigen::Ref<Eigen::VectorXd> u) override {
-    inner_.control(t, measured, reference, u);
-    if (t >= kRecordFrom) samples_.push_back({t, measured, reference, u});
-  }
-
- private:
-  thetad::Controller& inner_;
-  std::vector<Sample>& samples_;
-};
+using Sample = thetad::sim::ControlSample;
 
 struct Recording {
   thetad::Scenario scenario;
@@ -78,7 +57,7 @@ struct Recording {
     settings.duration = kRecordTo;
     settings.measure_compute_time = false;
     const auto flown = make("theta-d", YAML::Node());
-    RecordingLaw law(*flown, samples);
+    thetad::sim::RecordingLaw law(*flown, kRecordFrom, samples);
     const auto run = thetad::sim::simulate(law, scenario.trajectory, scenario.initial_state, settings,
                                            heli::Parameters::nominal(), scenario.model_options);
     if (run.summary.status != thetad::sim::RunStatus::completed)

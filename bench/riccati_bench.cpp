@@ -97,6 +97,19 @@ void bm_solve_care_newton(benchmark::State& state, const Problem& p) {
   state.counters["iterations"] = result.iterations;
 }
 
+// The same solve through a NewtonKleinmanSolver built once, as the SDRE's warm step uses it: no
+// allocation, Q and R checked once.
+void bm_newton_kleinman_solver(benchmark::State& state, const Problem& p) {
+  thetad::NewtonKleinmanSolver solver(p.Q, p.R);
+  const thetad::CareResult* result = nullptr;
+  for (auto _ : state) {
+    result = &solver.solve(p.A, p.B, p.P_warm);
+    benchmark::DoNotOptimize(result->P.data());
+  }
+  state.counters["residual"] = thetad::bench::relative_residual(p, result->P);
+  state.counters["iterations"] = result->iterations;
+}
+
 // SB02MD with its workspace allocated once outside the loop. Inside the loop: what a caller
 // holding (A, B, Q, R) must do, i.e. form G = B R⁻¹ B' (Cholesky of R), copy A and Q into the
 // Fortran arrays (SB02MD overwrites Q with X) and call it.
@@ -229,6 +242,7 @@ int main(int argc, char** argv) {
       {"solve_care", bm_solve_care<thetad::CareMethod::automatic>},
       {"solve_care_schur", bm_solve_care<thetad::CareMethod::schur>},
       {"solve_care_newton_warm", bm_solve_care_newton},
+      {"newton_kleinman_solver_warm", bm_newton_kleinman_solver},
       {"sb02md", bm_sb02md},
       {"constant_lyapunov_solve", bm_constant_lyapunov},
       {"solve_lyapunov", bm_solve_lyapunov},

@@ -38,6 +38,7 @@ SdreController::SdreController(const SdcPlant& model, SdreSettings settings)
     throw Error("sdre: R must be symmetric positive definite");
   }
   R_inverse_ = llt.solve(Eigen::MatrixXd::Identity(m, m));
+  newton_.emplace(settings_.Q, settings_.R, settings_.newton_tolerance, settings_.newton_max_iterations);
 
   F_.setZero(n, n);
   B_.setZero(n, m);
@@ -73,9 +74,7 @@ void SdreController::update_value_matrix(double t) {
   try {
     if (settings_.mode == SdreSettings::Mode::warm && have_P_) {
       try {
-        P_ = solve_care_newton(F_, B_, settings_.Q, settings_.R, P_, settings_.newton_tolerance,
-                               settings_.newton_max_iterations)
-                 .P;
+        P_ = newton_->solve(F_, B_, P_).P;
         return;
       } catch (const Error&) {
         // The last P does not stabilize (F, B) here, or Newton did not converge: solve cold.

@@ -8,12 +8,12 @@
 // speed follows T_mr), u is the fixed point of u -> F(x; u), B(x; u) -> u' of spec §7.6, started
 // from the previously applied input: every pass solves one CARE.
 //
-// One CARE per pass allocates (solve_care returns a CareResult of fresh matrices): accepted for
-// this controller, whose step is dominated by the O(n³) Schur or Newton solve (~0.2-0.3 ms for
-// n = 18) rather than by the allocations. Everything else in the step works in buffers sized at
-// construction.
+// The warm step allocates nothing: Newton–Kleinman works in a NewtonKleinmanSolver sized at
+// construction. A cold solve (the first sample, cold mode, a warm step that failed) allocates
+// (solve_care returns a CareResult of fresh matrices).
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -42,7 +42,8 @@ struct SdreSettings {
   // Stops early when max|Δu| < fixed_point_tolerance.
   int fixed_point_iterations = 3;
   double fixed_point_tolerance = 1e-6;
-  // Newton–Kleinman stopping rule of the warm mode (relative step or residual), and its step limit.
+  // Newton–Kleinman stopping rule of the warm mode (its normwise residual, newton_kleinman.hpp),
+  // and its step limit.
   double newton_tolerance = 1e-12;
   int newton_max_iterations = 20;
 };
@@ -90,6 +91,7 @@ class SdreController final : public Controller {
   const SdcPlant* model_;
   SdreSettings settings_;
   Eigen::MatrixXd R_inverse_;
+  std::optional<NewtonKleinmanSolver> newton_;  // the warm mode's, set in the constructor
 
   // Per-step buffers, sized in the constructor.
   Eigen::MatrixXd F_, B_, P_;

@@ -2,23 +2,16 @@
 
 #include <algorithm>
 #include <complex>
-#include <cstdio>
 #include <limits>
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/SVD>
 
+#include "core/care_weights.hpp"
+
 namespace thetad {
 
-namespace {
-
-std::string num(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3g", value);
-  return text;
-}
-
-}  // namespace
+using care::num;
 
 std::string broken_care_precondition(const Eigen::Ref<const Eigen::MatrixXd>& A,
                                      const Eigen::Ref<const Eigen::MatrixXd>& B,
@@ -53,5 +46,15 @@ std::string broken_care_precondition(const Eigen::Ref<const Eigen::MatrixXd>& A,
   return {};
 }
 
+void rethrow_with_diagnosis(const Error& error, const Eigen::Ref<const Eigen::MatrixXd>& A,
+                            const Eigen::Ref<const Eigen::MatrixXd>& B, const Eigen::Ref<const Eigen::MatrixXd>& Q) {
+  const std::string broken = broken_care_precondition(A, B, Q);
+  if (broken.empty()) throw error;
+  // The solver's own words, less the "CARE: " and the generic hint that `broken` now makes precise.
+  std::string solver = std::string(error.what()).substr(6);
+  if (const auto hint = solver.find(care::kStabilizabilityHint); hint != std::string::npos)
+    solver.erase(hint, std::string(care::kStabilizabilityHint).size());
+  throw Error("CARE: " + broken + " (" + solver + ")");
+}
 
 }  // namespace thetad

@@ -4,6 +4,8 @@
 
 #include <Eigen/Core>
 
+#include "core/error.hpp"
+
 namespace thetad {
 
 // Which precondition of a stabilizing CARE solution the data break, by the Popov–Belevitch–Hautus
@@ -15,5 +17,11 @@ namespace thetad {
 std::string broken_care_precondition(const Eigen::Ref<const Eigen::MatrixXd>& A,
                                      const Eigen::Ref<const Eigen::MatrixXd>& B,
                                      const Eigen::Ref<const Eigen::MatrixXd>& Q);
+
+// For the catch block of a CARE solver: throws `error` again, with the precondition the data break
+// (broken_care_precondition) in front when one is found, in place of the solver's generic hint.
+[[noreturn]] void rethrow_with_diagnosis(const Error& error, const Eigen::Ref<const Eigen::MatrixXd>& A,
+                                         const Eigen::Ref<const Eigen::MatrixXd>& B,
+                                         const Eigen::Ref<const Eigen::MatrixXd>& Q);
 
 }  // namespace thetad

@@ -1,5 +1,6 @@
 #include "core/lyapunov.hpp"
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <limits>
@@ -26,29 +27,66 @@ Eigen::MatrixXd solve_lyapunov(const Eigen::Ref<const Eigen::MatrixXd>& A,
   if (A.rows() != A.cols()) throw Error("solve_lyapunov: A must be square, got " + shape(A));
   if (Q.rows() != A.rows() || Q.cols() != A.cols())
     throw Error("solve_lyapunov: Q must have the size of A (" + shape(A) + "), got " + shape(Q));
-  if (!A.allFinite()) throw Error("solve_lyapunov: A has non-finite entries");
   if (!Q.allFinite()) throw Error("solve_lyapunov: Q has non-finite entries");
-  const auto n = static_cast<lapack_int>(A.rows());
-  if (n == 0) return Eigen::MatrixXd(0, 0);
+  if (A.rows() == 0) return Eigen::MatrixXd(0, 0);
+  LyapunovWorkspace workspace(A.rows());
+  workspace.factor(A);
+  Eigen::MatrixXd X(A.rows(), A.cols());
+  workspace.solve(Q, X);
+  return X;
+}
 
-  // A = U T U' with T quasi-triangular turns A'X + XA = −Q into T'Y + YT = −U'QU, Y = U'XU.
-  Eigen::MatrixXd T = A;
-  Eigen::MatrixXd U(n, n);
-  Eigen::VectorXd wr(n), wi(n);
+static_assert(sizeof(lapack_int) == sizeof(int) && sizeof(lapack_logical) == sizeof(int),
+              "LyapunovWorkspace stores LAPACK integers as int");
+
+LyapunovWorkspace::LyapunovWorkspace(Eigen::Index n)
+    : n_(static_cast<int>(n)), T_(n, n), U_(n, n), Y_(n, n), scratch_(n, n), wr_(n), wi_(n), bwork_(n) {
+  if (n < 1) throw Error("LyapunovWorkspace: n must be at least 1, got " + std::to_string(n));
+  // dgees' optimal workspace (a query), so that the blocked Hessenberg reduction can run.
+  double optimal = 0.0;
   lapack_int sdim = 0;
-  lapack_int info = LAPACKE_dgees(LAPACK_COL_MAJOR, 'V', 'N', nullptr, n, T.data(), n, &sdim,
-                                  wr.data(), wi.data(), U.data(), n);
+  const lapack_int info = LAPACKE_dgees_work(LAPACK_COL_MAJOR, 'V', 'N', nullptr, n_, T_.data(), n_, &sdim,
+                                             wr_.data(), wi_.data(), U_.data(), n_, &optimal, -1, bwork_.data());
+  if (info != 0) throw Error("LyapunovWorkspace: dgees workspace query failed (info " + std::to_string(info) + ")");
+  work_.resize(std::max<Eigen::Index>(static_cast<Eigen::Index>(optimal), 3 * n));
+}
+
+void LyapunovWorkspace::schur(const Eigen::Ref<const Eigen::MatrixXd>& A, char vectors) {
+  if (A.rows() != n_ || A.cols() != n_)
+    throw Error("solve_lyapunov: A must be " + std::to_string(n_) + "x" + std::to_string(n_) + ", got " + shape(A));
+  if (!A.allFinite()) throw Error("solve_lyapunov: A has non-finite entries");
+  T_ = A;
+  a_norm_ = A.norm();
+  lapack_int sdim = 0;
+  const lapack_int info =
+      LAPACKE_dgees_work(LAPACK_COL_MAJOR, vectors, 'N', nullptr, n_, T_.data(), n_, &sdim, wr_.data(), wi_.data(),
+                         U_.data(), n_, work_.data(), static_cast<lapack_int>(work_.size()), bwork_.data());
   if (info != 0)
-    throw Error("solve_lyapunov: the real Schur form of A did not converge (dgees info " +
-                std::to_string(info) + ")");
+    throw Error("solve_lyapunov: the real Schur form of A did not converge (dgees info " + std::to_string(info) + ")");
+  factored_ = vectors == 'V';
+}
+
+void LyapunovWorkspace::factor(const Eigen::Ref<const Eigen::MatrixXd>& A) { schur(A, 'V'); }
+
+void LyapunovWorkspace::compute_eigenvalues(const Eigen::Ref<const Eigen::MatrixXd>& A) { schur(A, 'N'); }
+
+void LyapunovWorkspace::solve(const Eigen::Ref<const Eigen::MatrixXd>& Q, Eigen::Ref<Eigen::MatrixXd> X) {
+  if (!factored_) throw Error("LyapunovWorkspace::solve: factor(A) first");
+  if (Q.rows() != n_ || Q.cols() != n_ || X.rows() != n_ || X.cols() != n_)
+    throw Error("solve_lyapunov: Q and X must be " + std::to_string(n_) + "x" + std::to_string(n_) + ", got Q " +
+                shape(Q) + " and X " + std::to_string(X.rows()) + "x" + std::to_string(X.cols()));
 
   // The operator's eigenvalues are λi + λj; checking them here gives a message that names the
-  // cause instead of dtrsyl's silent perturbation.
-  double smallest = std::numeric_limits<double>::infinity();
-  for (lapack_int i = 0; i < n; ++i)
-    for (lapack_int j = i; j < n; ++j)
-      smallest = std::min(smallest, std::hypot(wr(i) + wr(j), wi(i) + wi(j)));
-  const double threshold = 1e-10 * std::max(A.norm(), 1.0);
+  // cause instead of dtrsyl's silent perturbation. Squared moduli: no hypot in the O(n²) loop.
+  double smallest_squared = std::numeric_limits<double>::infinity();
+  for (int j = 0; j < n_; ++j)
+    for (int i = j; i < n_; ++i) {
+      const double re = wr_(i) + wr_(j);
+      const double im = wi_(i) + wi_(j);
+      smallest_squared = std::min(smallest_squared, re * re + im * im);
+    }
+  const double smallest = std::sqrt(smallest_squared);
+  const double threshold = 1e-10 * std::max(a_norm_, 1.0);
   if (smallest <= threshold) {
     std::ostringstream message;
     message << "solve_lyapunov: the Lyapunov operator X -> A'X + XA is singular to working "
@@ -58,22 +96,25 @@ Eigen::MatrixXd solve_lyapunov(const Eigen::Ref<const Eigen::MatrixXd>& A,
     throw Error(message.str());
   }
 
-  Eigen::MatrixXd Y = -(U.transpose() * Q * U);
+  // A = U T U' turns A'X + XA = −Q into T'Y + YT = −U'QU, Y = U'XU.
+  scratch_.noalias() = U_.transpose() * Q;
+  Y_.noalias() = -scratch_ * U_;
   double scale = 1.0;
-  info = LAPACKE_dtrsyl(LAPACK_COL_MAJOR, 'T', 'N', 1, n, n, T.data(), n, T.data(), n, Y.data(),
-                        n, &scale);
+  const lapack_int info =
+      LAPACKE_dtrsyl_work(LAPACK_COL_MAJOR, 'T', 'N', 1, n_, n_, T_.data(), n_, T_.data(), n_, Y_.data(), n_, &scale);
   if (info < 0) throw Error("solve_lyapunov: dtrsyl rejected argument " + std::to_string(-info));
   if (info == 1)
     throw Error("solve_lyapunov: A and -A have nearly equal eigenvalues; dtrsyl had to perturb "
                 "them (min |λi + λj| = " + std::to_string(smallest) + ")");
-  Eigen::MatrixXd X = U * Y * U.transpose();
+  scratch_.noalias() = U_ * Y_;
+  X.noalias() = scratch_ * U_.transpose();
   // scale < 1 only when dtrsyl scaled the right side down to avoid overflow.
   if (scale != 1.0) X /= scale;
   if (!X.allFinite())
-    throw Error("solve_lyapunov: the solution overflowed (dtrsyl scale " + std::to_string(scale) +
-                ")");
-  if (Q == Q.transpose()) X = (0.5 * (X + X.transpose())).eval();
-  return X;
+    throw Error("solve_lyapunov: the solution overflowed (dtrsyl scale " + std::to_string(scale) + ")");
+  if (Q == Q.transpose())
+    for (int j = 0; j < n_; ++j)
+      for (int i = 0; i < j; ++i) X(i, j) = X(j, i) = 0.5 * (X(i, j) + X(j, i));
 }
 
 ConstantLyapunovSolver::ConstantLyapunovSolver(const Eigen::Ref<const Eigen::MatrixXd>& Ac)

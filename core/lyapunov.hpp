@@ -10,6 +10,8 @@
 //    construction; a solve is then one dense matrix–vector product and allocates nothing.
 //    docs/performance.md has the measurements behind this choice.
 
+#include <vector>
+
 #include <Eigen/Dense>
 
 namespace thetad {
@@ -22,6 +24,40 @@ namespace thetad {
 // share an eigenvalue (e.g. A has eigenvalues ±1, or any eigenvalue on the imaginary axis).
 Eigen::MatrixXd solve_lyapunov(const Eigen::Ref<const Eigen::MatrixXd>& A,
                                const Eigen::Ref<const Eigen::MatrixXd>& Q);
+
+// solve_lyapunov for a new A at every call of a hot path (Newton–Kleinman inside a control step):
+// the LAPACK workspaces and every buffer are sized once, at construction, for one n, and a solve
+// allocates nothing. Two phases, because a caller often wants A's spectrum before it solves: the
+// Schur form of A gives it for free.
+class LyapunovWorkspace {
+ public:
+  explicit LyapunovWorkspace(Eigen::Index n);
+
+  // Real Schur form A = U T U' (LAPACK dgees) and the eigenvalues of A. Throws thetad::Error on a
+  // size mismatch, non-finite entries or when dgees does not converge.
+  void factor(const Eigen::Ref<const Eigen::MatrixXd>& A);
+  // The eigenvalues of A only (no Schur vectors, cheaper): a later solve() needs factor() first.
+  void compute_eigenvalues(const Eigen::Ref<const Eigen::MatrixXd>& A);
+  // Eigenvalues of the last factor()ed or compute_eigenvalues()ed A, in Schur order.
+  const Eigen::VectorXd& eigenvalues_real() const { return wr_; }
+  const Eigen::VectorXd& eigenvalues_imag() const { return wi_; }
+  double max_real_eigenvalue() const { return wr_.maxCoeff(); }
+
+  // X with A'X + XA + Q = 0 for the A of the last factor(); Q symmetric gives X exactly
+  // symmetric. Throws as solve_lyapunov.
+  void solve(const Eigen::Ref<const Eigen::MatrixXd>& Q, Eigen::Ref<Eigen::MatrixXd> X);
+
+ private:
+  void schur(const Eigen::Ref<const Eigen::MatrixXd>& A, char vectors);
+
+  int n_;  // LAPACK integers: lapack_int is int (static_assert in lyapunov.cpp)
+  Eigen::MatrixXd T_, U_;  // A = U T U'
+  Eigen::MatrixXd Y_, scratch_;  // U'XU, and the one intermediate of a triple product
+  Eigen::VectorXd wr_, wi_, work_;
+  std::vector<int> bwork_;
+  double a_norm_ = 0.0;
+  bool factored_ = false;
+};
 
 // Solves Ac'X + XAc + Q = 0 for many symmetric Q with one fixed Hurwitz Ac.
 //

@@ -2,12 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <optional>
 #include <string>
 
 #include "core/care_diagnosis.hpp"
+#include "core/care_weights.hpp"
 #include "core/error.hpp"
 #include "core/lapack.hpp"
 #include "core/lyapunov.hpp"
@@ -18,95 +18,14 @@ namespace {
 
 using Eigen::Index;
 using Eigen::MatrixXd;
-using MatrixRef = Eigen::Ref<const MatrixXd>;
+using care::MatrixRef;
+
+using care::fail;
+using care::kStabilizabilityHint;
+using care::num;
+using care::Weights;
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
-
-std::string num(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.3g", value);
-  return buffer;
-}
-
-std::string shape(const MatrixRef& M) {
-  return std::to_string(M.rows()) + "x" + std::to_string(M.cols());
-}
-
-[[noreturn]] void fail(const std::string& what) { throw Error("CARE: " + what); }
-
-const char* const kStabilizabilityHint =
-    "; the pair (A, B) may not be stabilizable or (Q, A) may have an unobservable mode on the "
-    "imaginary axis (not detectable)";
-
-void check_inputs(const MatrixRef& A, const MatrixRef& B, const MatrixRef& Q, const MatrixRef& R) {
-  const Index n = A.rows();
-  if (n == 0 || A.cols() != n) fail("A must be square and non-empty, but A is " + shape(A));
-  if (B.rows() != n) fail("B is " + shape(B) + " but A is " + shape(A) + " (B needs " + std::to_string(n) + " rows)");
-  if (B.cols() == 0) fail("B has no columns");
-  if (Q.rows() != n || Q.cols() != n) fail("Q is " + shape(Q) + " but A is " + shape(A));
-  if (R.rows() != B.cols() || R.cols() != B.cols())
-    fail("R is " + shape(R) + " but B has " + std::to_string(B.cols()) + " columns");
-  const std::pair<const char*, const MatrixRef*> all[] = {{"A", &A}, {"B", &B}, {"Q", &Q}, {"R", &R}};
-  for (const auto& [name, M] : all)
-    if (!M->allFinite()) fail(std::string(name) + " has a non-finite entry (NaN or Inf)");
-}
-
-// Relative to the matrix itself: weights that differ by 1e7 within one matrix are normal here.
-void check_symmetric(const char* name, const MatrixRef& M) {
-  const double asymmetry = (M - M.transpose()).norm();
-  if (asymmetry > 1e-10 * M.norm())
-    fail(std::string(name) + " is not symmetric (‖" + name + " − " + name + "'‖_F = " + num(asymmetry) +
-         ", ‖" + name + "‖_F = " + num(M.norm()) + ")");
-}
-
-// Smallest and largest eigenvalue of a symmetric matrix. Weights are usually diagonal, and the
-// per-step SDRE calls this every control step: a diagonal needs no eigensolver.
-std::pair<double, double> spectrum_range(const MatrixXd& M) {
-  if (M.isDiagonal(0.0)) return {M.diagonal().minCoeff(), M.diagonal().maxCoeff()};
-  const Eigen::VectorXd eigenvalues = M.selfadjointView<Eigen::Lower>().eigenvalues();
-  return {eigenvalues(0), eigenvalues(eigenvalues.size() - 1)};
-}
-
-// What both solvers derive from (B, Q, R) once the preconditions hold. G = B R⁻¹ B' is kept
-// factored as W'W with W = L⁻¹B' (R = LL'): G·P then costs 2mn² instead of n³, P G P = (WP)'(WP)
-// is exactly symmetric, and K = R⁻¹B'P = L'⁻¹(WP).
-struct Weights {
-  MatrixXd Q;  // symmetrized
-  MatrixXd L;  // lower Cholesky factor of R
-  MatrixXd W;  // L⁻¹ B', m×n
-};
-
-Weights prepare_weights(const MatrixRef& B, const MatrixRef& Q, const MatrixRef& R) {
-  check_symmetric("Q", Q);
-  check_symmetric("R", R);
-  Weights w;
-  w.Q = 0.5 * (Q + Q.transpose());
-  const auto [q_min, q_max] = spectrum_range(w.Q);
-  const double q_scale = std::max(std::abs(q_min), std::abs(q_max));
-  if (q_min < -100.0 * static_cast<double>(Q.rows()) * kEps * q_scale)
-    fail("Q is not positive semi-definite (min eigenvalue " + num(q_min) + ", max " + num(q_max) + ")");
-
-  const MatrixXd R_sym = 0.5 * (R + R.transpose());
-  const auto [r_min, r_max] = spectrum_range(R_sym);
-  // Below m·eps·max the Cholesky factor, hence G, carries no correct digit.
-  if (!(r_min > static_cast<double>(R.rows()) * kEps * r_max))
-    fail("R is not symmetric positive definite (min eigenvalue " + num(r_min) + ", max " + num(r_max) + ")");
-  Eigen::LLT<MatrixXd> llt(R_sym);
-  w.L = llt.matrixL();
-  w.W = B.transpose();
-  w.L.triangularView<Eigen::Lower>().solveInPlace(w.W);
-  return w;
-}
-
-// Res = A'P + PA − P G P + Q for symmetric P, with WP = W·P given.
-void care_residual(const MatrixRef& A, const Weights& w, const MatrixXd& P, const MatrixXd& WP, MatrixXd& Res) {
-  Res.noalias() = A.transpose() * P;
-  Res += Res.transpose().eval();
-  Res.noalias() -= WP.transpose() * WP;
-  Res += w.Q;
-}
-
-double relative_to_q(double residual_norm, const Weights& w) { return residual_norm / std::max(1.0, w.Q.norm()); }
 
 // What a solver already knows about its P when it finishes: W·P always; the residual and the
 // closed-loop spectrum when it computed them on the way (null: compute them here).
@@ -138,11 +57,11 @@ CareResult finish(const MatrixRef& A, const MatrixRef& B, const Weights& w, Solu
     fail("the solution is not stabilizing: A − BK has an eigenvalue with Re λ = " + num(max_real) +
          kStabilizabilityHint);
   if (s.residual) {
-    result.relative_residual = relative_to_q(s.residual->norm(), w);
+    result.relative_residual = care::relative_to_q(s.residual->norm(), w);
   } else {
     MatrixXd Res(s.P.rows(), s.P.cols());
-    care_residual(A, w, s.P, s.WP, Res);
-    result.relative_residual = relative_to_q(Res.norm(), w);
+    care::care_residual(A, w, s.P, s.WP, Res);
+    result.relative_residual = care::relative_to_q(Res.norm(), w);
   }
   result.P = std::move(s.P);
   result.iterations = iterations;
@@ -170,15 +89,12 @@ struct Candidate {
   double eta;  // normwise backward error, see evaluate()
 };
 
-// η = ‖Res‖_F / (‖Q‖_F + 2‖A‖_F‖P‖_F + ‖G‖_F‖P‖_F²): the residual against the size of the terms
-// that make it up, at rounding level for a backward-stable solution however ill-conditioned
-// the equation is.
+// η: care::normwise_residual.
 Candidate evaluate(const MatrixRef& A, const Weights& w, double g_norm, MatrixXd P) {
   Candidate c{std::move(P), {}, MatrixXd(A.rows(), A.cols()), 0.0};
   c.WP.noalias() = w.W * c.P;
-  care_residual(A, w, c.P, c.WP, c.Res);
-  const double p_norm = c.P.norm();
-  c.eta = c.Res.norm() / (w.Q.norm() + 2.0 * A.norm() * p_norm + g_norm * p_norm * p_norm);
+  care::care_residual(A, w, c.P, c.WP, c.Res);
+  c.eta = care::normwise_residual(c.Res.norm(), w.Q.norm(), A.norm(), g_norm, c.P.norm());
   return c;
 }
 
@@ -332,25 +248,10 @@ MatrixXd schur_solution(const ScaledHamiltonian& scaled_h, Eigen::VectorXcd& sta
   return scaled_h.unscale(lu.solve(U.bottomLeftCorner(n, n).transpose()).transpose());
 }
 
-// Runs `solve`; a failure gets the precondition the data break, when one is, in front.
-template <class Solve>
-CareResult diagnosed(const MatrixRef& A, const MatrixRef& B, const MatrixRef& Q, Solve&& solve) {
-  try {
-    return solve();
-  } catch (const Error& error) {
-    const std::string broken = broken_care_precondition(A, B, Q);
-    if (broken.empty()) throw;
-    // The solver's own words, less the "CARE: " and the generic hint that `broken` now makes precise.
-    std::string solver = std::string(error.what()).substr(6);
-    if (const auto hint = solver.find(kStabilizabilityHint); hint != std::string::npos)
-      solver.erase(hint, std::string(kStabilizabilityHint).size());
-    throw Error("CARE: " + broken + " (" + solver + ")");
-  }
-}
-
 CareResult solve_checked(const MatrixRef& A, const MatrixRef& B, const MatrixRef& Q, const MatrixRef& R,
                          CareMethod method) {
-  const Weights w = prepare_weights(B, Q, R);
+  Weights w = care::prepare_weights(Q, R);
+  care::set_input_matrix(w, B);
   const Index n = A.rows();
   const MatrixXd H = hamiltonian(A, w);
   const double g_norm = H.topRightCorner(n, n).norm();
@@ -390,61 +291,12 @@ CareResult solve_checked(const MatrixRef& A, const MatrixRef& B, const MatrixRef
 
 CareResult solve_care(const MatrixRef& A, const MatrixRef& B, const MatrixRef& Q, const MatrixRef& R,
                       CareMethod method) {
-  check_inputs(A, B, Q, R);
-  return diagnosed(A, B, Q, [&] { return solve_checked(A, B, Q, R, method); });
-}
-
-CareResult solve_care_newton(const MatrixRef& A, const MatrixRef& B, const MatrixRef& Q, const MatrixRef& R,
-                             const MatrixRef& P0, double tolerance, int max_iterations) {
-  check_inputs(A, B, Q, R);
-  if (P0.rows() != A.rows() || P0.cols() != A.cols()) fail("P0 is " + shape(P0) + " but A is " + shape(A));
-  if (!P0.allFinite()) fail("P0 has a non-finite entry (NaN or Inf)");
-  if (!(tolerance > 0.0) || max_iterations < 1)
-    fail("Newton–Kleinman needs tolerance > 0 and max_iterations ≥ 1 (got " + num(tolerance) + ", " +
-         std::to_string(max_iterations) + ")");
-  const Weights w = prepare_weights(B, Q, R);
-  const Index n = A.rows();
-
-  MatrixXd P = 0.5 * (P0 + P0.transpose());
-  MatrixXd WP = w.W * P;
-  MatrixXd Ak = A;
-  Ak.noalias() -= w.W.transpose() * WP;
-  const double max_real = Eigen::EigenSolver<MatrixXd>(Ak, false).eigenvalues().real().maxCoeff();
-  if (!(max_real < 0.0))
-    fail("Newton–Kleinman: P0 is not stabilizing (largest Re λ of A − G P0 is " + num(max_real) + ")");
-
-  // Each step solves for the correction Δ = Pk+1 − Pk, Ak'Δ + ΔAk + Res(Pk) = 0, which is the
-  // same equation as the one for Pk+1 but keeps the digits of Pk that are already right.
-  MatrixXd Res(n, n);
-  double residual = 0.0;
-  double step = 0.0;
-  int iterations = 0;
-  for (;;) {
-    care_residual(A, w, P, WP, Res);
-    residual = relative_to_q(Res.norm(), w);
-    if (residual <= tolerance) break;
-    if (iterations == max_iterations)
-      fail("Newton–Kleinman did not converge in " + std::to_string(iterations) + " iterations (relative residual " +
-           num(residual) + ", last relative step " + num(step) + ", tolerance " + num(tolerance) + ")");
-    MatrixXd delta;
-    try {
-      delta = solve_lyapunov(Ak, Res);
-    } catch (const Error& e) {
-      fail("Newton–Kleinman step " + std::to_string(iterations + 1) + ": " + e.what());
-    }
-    P += delta;
-    P = 0.5 * (P + P.transpose()).eval();
-    ++iterations;
-    WP.noalias() = w.W * P;
-    Ak = A;
-    Ak.noalias() -= w.W.transpose() * WP;
-    step = delta.norm() / std::max(1.0, P.norm());
-    // Rounding limits the residual of an ill-conditioned equation long before the step stalls.
-    if (step <= tolerance) break;
+  care::check_inputs(A, B, Q, R);
+  try {
+    return solve_checked(A, B, Q, R, method);
+  } catch (const Error& error) {
+    rethrow_with_diagnosis(error, A, B, Q);
   }
-  // Res belongs to P only when the loop stopped on the residual; after a step it is stale.
-  const bool residual_current = residual <= tolerance;
-  return finish(A, B, w, {std::move(P), std::move(WP), residual_current ? &Res : nullptr, nullptr}, iterations);
 }
 
 }  // namespace thetad

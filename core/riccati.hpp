@@ -23,6 +23,9 @@
 
 #include <Eigen/Dense>
 
+#include "core/care_result.hpp"
+#include "core/newton_kleinman.hpp"
+
 namespace thetad {
 
 // How solve_care finds the stable invariant subspace of the Hamiltonian
@@ -42,37 +45,11 @@ enum class CareMethod {
   schur,
 };
 
-struct CareResult {
-  Eigen::MatrixXd P;                         // stabilizing solution, exactly symmetric
-  Eigen::MatrixXd K;                         // R⁻¹ B' P: the optimal feedback is u = −K x
-  Eigen::VectorXcd closed_loop_eigenvalues;  // eig(A − B K)
-  // ‖A'P + PA − PBR⁻¹B'P + Q‖_F / max(1, ‖Q‖_F). On ill-conditioned equations the terms of
-  // the sum can be far larger than Q, and so is this number even for a backward-stable solve.
-  double relative_residual;
-  // Newton steps taken. solve_care: Newton refinement steps after the direct solution, 0 unless
-  // that solution was not backward stable (see riccati.cpp).
-  int iterations;
-  // Inversions of the sign-function iteration that produced P; 0 when P came from the Schur
-  // form or from Newton–Kleinman.
-  int sign_iterations = 0;
-};
-
 // The direct solver: no initial guess needed.
 CareResult solve_care(const Eigen::Ref<const Eigen::MatrixXd>& A,
                       const Eigen::Ref<const Eigen::MatrixXd>& B,
                       const Eigen::Ref<const Eigen::MatrixXd>& Q,
                       const Eigen::Ref<const Eigen::MatrixXd>& R,
                       CareMethod method = CareMethod::automatic);
-
-// Newton–Kleinman from the warm start P0, which must be stabilizing (A − G P0 Hurwitz): each
-// step solves the Lyapunov equation (A − G Pk)'X + X(A − G Pk) + Q + Pk G Pk = 0 for Pk+1 = X.
-// Stops when the step ‖Pk+1 − Pk‖_F ≤ tolerance·max(1, ‖Pk+1‖_F) or the relative residual is
-// ≤ tolerance; throws if that does not happen within max_iterations steps.
-CareResult solve_care_newton(const Eigen::Ref<const Eigen::MatrixXd>& A,
-                             const Eigen::Ref<const Eigen::MatrixXd>& B,
-                             const Eigen::Ref<const Eigen::MatrixXd>& Q,
-                             const Eigen::Ref<const Eigen::MatrixXd>& R,
-                             const Eigen::Ref<const Eigen::MatrixXd>& P0,
-                             double tolerance = 1e-12, int max_iterations = 50);
 
 }  // namespace thetad

@@ -12,6 +12,9 @@
 
 namespace thetad::testing {
 
+// A 1×1 matrix: scalar equations in the CARE tests.
+inline Eigen::MatrixXd scalar(double v) { return Eigen::MatrixXd::Constant(1, 1, v); }
+
 // Expects `result` to be the stabilizing solution of A'P + PA − PBR⁻¹B'P + Q = 0:
 //  - P exactly symmetric and positive semi-definite (min eig ≥ −tol·‖P‖₂);
 //  - residual: the normwise residual ‖Res‖_F / (‖Q‖_F + 2‖A‖_F‖P‖_F + ‖G‖_F‖P‖_F²) ≤ tol. When P

@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "core/error.hpp"
+#include "tests/core/care_checks.hpp"
 #include "tests/error_message.hpp"
 
 namespace thetad {
@@ -19,8 +20,8 @@ using Eigen::VectorXd;
 using ::testing::AllOf;
 using ::testing::HasSubstr;
 using testing::error_message;
+using testing::scalar;
 
-MatrixXd scalar(double v) { return MatrixXd::Constant(1, 1, v); }
 
 TEST(SolveCareErrors, DimensionMismatch) {
   const MatrixXd I2 = MatrixXd::Identity(2, 2);

@@ -28,9 +28,9 @@ using Eigen::MatrixXd;
 using Eigen::VectorXd;
 using ::testing::HasSubstr;
 using testing::error_message;
+using testing::scalar;
 using testing::expect_valid_care;
 
-MatrixXd scalar(double v) { return MatrixXd::Constant(1, 1, v); }
 
 const std::pair<CareMethod, const char*> kMethods[] = {
     {CareMethod::automatic, "automatic"}, {CareMethod::matrix_sign, "matrix_sign"}, {CareMethod::schur, "schur"}};
@@ -298,61 +298,6 @@ TEST(SolveCare, StableUncontrollableModeWithZeroWeightIsFine) {
   expect_valid_care(A, B, Q, scalar(1), result);
   EXPECT_NEAR(result.P(0, 0), 1 + std::sqrt(2.0), 1e-14);
   EXPECT_EQ(result.P(1, 1), 0.0);
-}
-
-TEST(SolveCareNewton, ConvergesFromNearbySystem) {
-  const PaperPlant plant;
-  std::mt19937_64 rng(7);
-  std::uniform_real_distribution<double> sign(-1.0, 1.0);
-  MatrixXd nearby = plant.A;
-  for (Eigen::Index i = 0; i < nearby.size(); ++i) nearby(i) *= 1.0 + 1e-3 * sign(rng);
-  const CareResult warm = solve_care(nearby, plant.B, plant.Q, plant.R);
-  const CareResult direct = solve_care(plant.A, plant.B, plant.Q, plant.R);
-  const CareResult newton = solve_care_newton(plant.A, plant.B, plant.Q, plant.R, warm.P);
-  expect_valid_care(plant.A, plant.B, plant.Q, plant.R, newton);
-  EXPECT_LE(newton.iterations, 6);
-  EXPECT_GE(newton.iterations, 1);
-  EXPECT_LE((newton.P - direct.P).norm(), 1e-10 * direct.P.norm());
-  std::cout << "Newton from nearby system: " << newton.iterations << " iterations, relative residual "
-            << newton.relative_residual << ", distance to Laub " << (newton.P - direct.P).norm() / direct.P.norm()
-            << "\n";
-}
-
-TEST(SolveCareNewton, ConvergesOnRandomSystems) {
-  std::mt19937_64 rng(99);
-  std::normal_distribution<double> normal;
-  auto random = [&](Eigen::Index rows, Eigen::Index cols) {
-    return MatrixXd(MatrixXd::NullaryExpr(rows, cols, [&]() { return normal(rng); }));
-  };
-  for (int n : {1, 3, 8, 18, 30}) {
-    const int m = std::max(1, n / 3);
-    const MatrixXd A = random(n, n) / std::sqrt(double(n)) + 0.3 * MatrixXd::Identity(n, n);
-    const MatrixXd B = random(n, m);
-    const MatrixXd Q = MatrixXd::Identity(n, n);
-    const MatrixXd R = MatrixXd::Identity(m, m);
-    const MatrixXd nearby = A + 1e-3 * A.norm() / n * random(n, n);
-    const CareResult warm = solve_care(nearby, B, Q, R);
-    const CareResult newton = solve_care_newton(A, B, Q, R, warm.P);
-    SCOPED_TRACE("n=" + std::to_string(n));
-    expect_valid_care(A, B, Q, R, newton);
-    EXPECT_LE(newton.iterations, 6);
-    EXPECT_LE((newton.P - solve_care(A, B, Q, R).P).norm(), 1e-10 * newton.P.norm());
-  }
-}
-
-TEST(SolveCareNewton, Errors) {
-  MatrixXd A(2, 2);
-  A << 1, 1, 0, 2;
-  const MatrixXd B = MatrixXd::Identity(2, 2);
-  const MatrixXd I2 = MatrixXd::Identity(2, 2);
-  EXPECT_THAT(error_message([&] { solve_care_newton(A, B, I2, I2, MatrixXd::Zero(2, 2)); }),
-              AllOf(HasSubstr("P0 is not stabilizing"), HasSubstr("largest Re λ of A − G P0 is 2")));
-  EXPECT_THAT(error_message([&] { solve_care_newton(A, B, I2, I2, MatrixXd::Zero(3, 3)); }),
-              HasSubstr("P0 is 3x3 but A is 2x2"));
-  EXPECT_THAT(error_message([&] { solve_care_newton(A, B, I2, I2, 100 * I2, 1e-12, 1); }),
-              AllOf(HasSubstr("did not converge in 1 iterations"), HasSubstr("relative residual")));
-  const MatrixXd P = solve_care(A, B, I2, I2).P;
-  EXPECT_THAT(error_message([&] { solve_care_newton(A, B, I2, I2, P, 0.0); }), HasSubstr("tolerance > 0"));
 }
 
 }  // namespace

@@ -1,0 +1,24 @@
+#pragma once
+
+// What every CARE solver returns (riccati.hpp, newton_kleinman.hpp).
+
+#include <Eigen/Dense>
+
+namespace thetad {
+
+struct CareResult {
+  Eigen::MatrixXd P;                         // stabilizing solution, exactly symmetric
+  Eigen::MatrixXd K;                         // R⁻¹ B' P: the optimal feedback is u = −K x
+  Eigen::VectorXcd closed_loop_eigenvalues;  // eig(A − B K)
+  // ‖A'P + PA − PBR⁻¹B'P + Q‖_F / max(1, ‖Q‖_F). On ill-conditioned equations the terms of
+  // the sum can be far larger than Q, and so is this number even for a backward-stable solve.
+  double relative_residual;
+  // Newton steps taken. solve_care: Newton refinement steps after the direct solution, 0 unless
+  // that solution was not backward stable (see riccati.cpp); Newton–Kleinman: its steps.
+  int iterations;
+  // Inversions of the sign-function iteration that produced P; 0 when P came from the Schur
+  // form or from Newton–Kleinman.
+  int sign_iterations = 0;
+};
+
+}  // namespace thetad

@@ -1,0 +1,51 @@
+#pragma once
+
+// What the CARE solvers (riccati.cpp, newton_kleinman.cpp) share: the checks of their inputs, the
+// weights in the factored form they compute with, the residual, and the wording of their errors.
+
+#include <string>
+
+#include <Eigen/Dense>
+
+namespace thetad::care {
+
+using MatrixRef = Eigen::Ref<const Eigen::MatrixXd>;
+
+std::string num(double value);  // %.3g
+std::string shape(const MatrixRef& M);
+[[noreturn]] void fail(const std::string& what);  // thetad::Error("CARE: " + what)
+
+// Appended to a failure that may come from a broken precondition the solver cannot name.
+extern const char* const kStabilizabilityHint;
+
+// Sizes match, nothing is empty, every entry is finite; the message names the matrix.
+void check_inputs(const MatrixRef& A, const MatrixRef& B, const MatrixRef& Q, const MatrixRef& R);
+
+// G = B R⁻¹ B' kept factored as W'W with W = L⁻¹B' (R = LL'): G·P then costs 2mn² instead of n³,
+// P G P = (WP)'(WP) is exactly symmetric, and K = R⁻¹B'P = L'⁻¹(WP).
+struct Weights {
+  Eigen::MatrixXd Q;  // symmetrized
+  Eigen::MatrixXd L;  // lower Cholesky factor of R
+  Eigen::MatrixXd W;  // L⁻¹ B', m×n: set by set_input_matrix
+};
+
+// Q and L once Q is symmetric positive semi-definite and R symmetric positive definite (the
+// message gives the extreme eigenvalues otherwise).
+Weights prepare_weights(const MatrixRef& Q, const MatrixRef& R);
+// W = L⁻¹B'; allocates nothing once W has the size of B'.
+void set_input_matrix(Weights& w, const MatrixRef& B);
+
+// Res = A'P + PA − P G P + Q for symmetric P, with WP = W·P given. Returns ‖A'P‖_F, the size of
+// one of the terms, for a caller that measures the residual against them (newton_kleinman.cpp).
+double care_residual(const MatrixRef& A, const Weights& w, const Eigen::MatrixXd& P, const Eigen::MatrixXd& WP,
+                   Eigen::MatrixXd& Res);
+
+// ‖Res‖_F / max(1, ‖Q‖_F): CareResult::relative_residual.
+double relative_to_q(double residual_norm, const Weights& w);
+
+// The normwise backward error η = ‖Res‖_F / (‖Q‖_F + 2‖A‖_F‖P‖_F + ‖G‖_F‖P‖_F²): the residual
+// against the size of the terms that make it up, at rounding level for a backward-stable solution
+// however ill-conditioned the equation is. ‖G‖_F = ‖W W'‖_F (an m×m product).
+double normwise_residual(double residual_norm, double q_norm, double a_norm, double g_norm, double p_norm);
+
+}  // namespace thetad::care
