@@ -27,6 +27,7 @@ Scenario load(const std::string& file_or_name, std::string& sha256) {
 Flight::Flight(const std::string& scenario, const RunControls& controls)
     : scenario_(load(scenario, provenance_.scenario_sha256)),
       settings_(scenario_.simulation_settings()),
+      initial_state_(offset_initial_state(controls, scenario_.initial_state)),
       model_(heli::Parameters::nominal(), scenario_.model_options) {
   apply(controls, settings_);
   provenance_.build = build_info();
@@ -58,7 +59,7 @@ std::string Flight::disturbances() const {
 }
 
 PreparedController Flight::prepare(const ControllerSpec& spec) const {
-  const ControllerContext context(model_, scenario_.initial_state, 0.0);
+  const ControllerContext context(model_, initial_state_, 0.0);
   auto build = [&] { return ControllerRegistry::instance().build(spec.controller, spec.settings, context); };
   BuiltController built = spec.settings_source.empty() ? build() : with_settings_source(spec.settings_source, build);
   return {spec, std::move(built.controller), built.settings};
@@ -74,7 +75,7 @@ RunResult Flight::fly(PreparedController& prepared, Progress* progress, const st
   if (progress) progress->start(heading.empty() ? prepared.spec.label + ":" : heading, settings_.duration);
   const auto start = std::chrono::steady_clock::now();
   const auto report = [progress](double t) { progress->update(t); };
-  sim::RunResult flown = sim::simulate(*prepared.controller, scenario_.trajectory, scenario_.initial_state, settings_,
+  sim::RunResult flown = sim::simulate(*prepared.controller, scenario_.trajectory, initial_state_, settings_,
                                        heli::Parameters::nominal(), scenario_.model_options,
                                        progress ? std::function<void(double)>(report) : std::function<void(double)>());
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

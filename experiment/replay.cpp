@@ -32,6 +32,11 @@ RunControls controls_of(const Json& settings, std::uint64_t seed) {
   controls.actuator_noise = noise.at("actuator").get<bool>();
   controls.wind_noise = noise.at("wind_component").get<bool>();
   controls.induced_velocity_noise = noise.at("induced_velocity").get<bool>();
+  // Files written before the disturbance scales existed flew at the paper's strengths.
+  controls.uncertainty_scale = settings.value("uncertainty_scale", 1.0);
+  controls.noise_scale = noise.value("scale", 1.0);
+  controls.gust_scale = settings.at("wind_gust").value("amplitude_scale", 1.0);
+  controls.gust_onset = settings.at("wind_gust").value("onset_s", 0.0);
   return controls;
 }
 
