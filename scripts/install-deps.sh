@@ -13,6 +13,8 @@ packages=(
   liblapack-dev liblapacke-dev libslicot-dev
   libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libssl-dev
   python3-matplotlib python3-scipy python3-mpmath
+  libsqlite3-dev libopenmpi-dev openmpi-bin
+  python3-pandas python3-statsmodels python3-pytest
 )
 
 missing=()
