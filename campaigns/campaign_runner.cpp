@@ -97,10 +97,11 @@ int default_jobs(bool mpi) {
 CampaignOutcome coordinate(const Campaign& campaign, const CampaignOptions& options, MpiSession* mpi) {
   // Every flight and controller built once: a bad cell or settings block fails before anything
   // flies or is written.
-  CampaignWorker(campaign, options.timing).prepare_all();
+  CampaignWorker check(campaign, options.timing);
+  check.prepare_all();
   std::filesystem::create_directories(options.out);
   CampaignStore store(store_file(options.out), campaign, options.shard,
-                      options.resume ? CampaignStore::Open::resume : CampaignStore::Open::create);
+                      options.resume ? CampaignStore::Open::resume : CampaignStore::Open::create, check.provenance());
 
   const std::set<std::int64_t> stored = store.stored();
   std::vector<std::int64_t> pending;

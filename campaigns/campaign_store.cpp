@@ -7,8 +7,6 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
-#include "experiment/build_info.hpp"
-#include "experiment/provenance.hpp"
 
 namespace thetad {
 
@@ -87,7 +85,9 @@ std::vector<std::string> run_columns() {
 
 fs::path store_file(const fs::path& out) { return out / "campaign.sqlite"; }
 
-CampaignStore::CampaignStore(const fs::path& file, const Campaign& campaign, const Shard& shard, Open open) : file_(file) {
+CampaignStore::CampaignStore(const fs::path& file, const Campaign& campaign, const Shard& shard, Open open,
+                             const std::string& provenance)
+    : file_(file) {
   const bool exists = fs::exists(file);
   if (open == Open::create && exists)
     throw Error(file.string() + " exists: pass --resume to continue that campaign, or choose another --out");
@@ -98,7 +98,7 @@ CampaignStore::CampaignStore(const fs::path& file, const Campaign& campaign, con
   execute("PRAGMA journal_mode=WAL");
   execute("PRAGMA synchronous=NORMAL");
   if (open == Open::create) {
-    create_schema(campaign, shard);
+    create_schema(campaign, shard, provenance);
     return;
   }
   if (meta("format") != kFormat) throw Error(file.string() + ": not a thetad campaign database (" + kFormat + ")");
@@ -150,11 +150,9 @@ void CampaignStore::create_tables() {
   execute(sql);
 }
 
-void CampaignStore::create_schema(const Campaign& campaign, const Shard& shard) {
+void CampaignStore::create_schema(const Campaign& campaign, const Shard& shard, const std::string& provenance) {
   execute("BEGIN");
   create_tables();
-  Provenance provenance;
-  provenance.build = build_info();
   nlohmann::ordered_json scenarios = nlohmann::ordered_json::array();
   for (const auto& scenario : campaign.scenarios) scenarios.push_back(scenario);
   nlohmann::ordered_json labels = nlohmann::ordered_json::array();
@@ -170,7 +168,7 @@ void CampaignStore::create_schema(const Campaign& campaign, const Shard& shard) 
   set_meta("swept", nlohmann::json(campaign.swept).dump());
   set_meta("controllers", labels.dump());
   set_meta("scenarios", scenarios.dump());
-  set_meta("provenance", to_json(provenance).dump());
+  set_meta("provenance", provenance);
   execute("COMMIT");
 }
 

@@ -1,5 +1,7 @@
 #include "campaigns/campaign_worker.hpp"
 
+#include <nlohmann/json.hpp>
+
 #include "core/error.hpp"
 
 namespace thetad {
@@ -49,6 +51,16 @@ void CampaignWorker::prepare_all() {
       for (int c = 0; c < static_cast<int>(campaign_.controllers.size()); ++c) controller(entry, c);
     }
   }
+}
+
+std::string CampaignWorker::provenance() {
+  nlohmann::ordered_json scenarios = nlohmann::ordered_json::array();
+  for (int scenario = 0; scenario < static_cast<int>(campaign_.scenarios.size()); ++scenario) {
+    nlohmann::ordered_json j = to_json(cell_flight(0, scenario).flight->provenance());
+    j.erase("seed");
+    scenarios.push_back(std::move(j));
+  }
+  return scenarios.dump();
 }
 
 double CampaignWorker::duration(int cell, int scenario) { return cell_flight(cell, scenario).flight->settings().duration; }

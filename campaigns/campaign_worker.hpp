@@ -27,6 +27,10 @@ class CampaignWorker {
   // does not divide the controller period) or controller settings fail here, before anything flies.
   void prepare_all();
 
+  // What produces the runs, per scenario (JSON list): the experiment library's provenance of each
+  // scenario's flight (build, scenario file and SHA-256, model) without the seed, which is per run.
+  std::string provenance();
+
   // The simulated duration of the runs of `cell` and `scenario` (s).
   double duration(int cell, int scenario);
 

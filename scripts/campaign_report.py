@@ -122,7 +122,7 @@ def markdown(meta, per_controller, paired, seed, resamples):
                      f"{row['completion_rate'] * 100:.1f} % ({low * 100:.1f}-{high * 100:.1f} %) | "
                      + " | ".join(cells) + f" | {reasons} |")
     if paired:
-        lines += ["", "## Paired differences", ""]
+        lines += ["", "## Paired differences"]
         current = None
         for row in paired:
             if row["cell_label"] != current:

@@ -9,6 +9,7 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
 #include "tests/apps/run_thetad.hpp"
@@ -103,6 +104,40 @@ sweep: {grid: {gust_scale: [0, 2]}}
   ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << output;
   EXPECT_THAT(output, HasSubstr("16 runs in shard 1/1, 16 flown now"));
   expect_same_runs(stored_records(single), stored_records(ranks));
+}
+
+TEST_F(CampaignCommand, TheReportWritesTablesJsonAndFiguresOfA2dSweep) {
+  const fs::path file = write_campaign(R"(campaign: report-test
+scenarios: [scenario-1]
+controllers: [{controller: lqr}, {label: td, controller: theta-d}]
+draws: {count: 3, base_seed: 2}
+fixed: {duration: 0.2}
+sweep: {grid: {uncertainty_scale: [0, 2], gust_scale: [0, 3]}}
+)");
+  const fs::path out = scratch_.path() / "out";
+  ASSERT_EQ(run_thetad(scratch_.path(), "campaign run " + file.string() + " --out " + out.string()).status, 0);
+  const auto report = run_thetad(scratch_.path(), "campaign report " + out.string() + " --seed 4");
+  ASSERT_EQ(report.status, 0) << report.out << report.err;
+  const fs::path folder = out / "report";
+  for (const char* figure : {"cdf_rms_error.png", "cdf_cost.png", "completion.png", "envelope_lqr.png", "envelope_td.png",
+                             "paired_violins.png"})
+    EXPECT_GT(fs::file_size(folder / figure), 1000u) << figure;
+  const std::string markdown = testing::read_text(folder / "report.md");
+  EXPECT_THAT(markdown, HasSubstr("| uncertainty_scale=2, gust_scale=3 | td | 3/3 | 100.0 % (43.9-100.0 %) |"));
+  EXPECT_THAT(markdown, HasSubstr("lqr's RMS position error is"));
+  const auto json = nlohmann::json::parse(testing::read_text(folder / "report.json"));
+  EXPECT_EQ(json.at("runs_stored"), 24);
+  EXPECT_EQ(json.at("controllers").size(), 8u);  // 4 cells x 2 controllers
+  EXPECT_EQ(json.at("paired").size(), 12u);      // 4 cells x 3 figures
+  EXPECT_EQ(json.at("statistics").at("bootstrap").at("seed"), 4);
+  ASSERT_EQ(json.at("provenance").size(), 1u);  // one scenario
+  EXPECT_EQ(json.at("provenance")[0].at("scenario").at("name"), "scenario-1");
+  EXPECT_EQ(json.at("provenance")[0].at("scenario").at("sha256").get<std::string>().size(), 64u);
+  EXPECT_FALSE(json.at("provenance")[0].at("git_revision").get<std::string>().empty());
+  // Seeded: the same report twice.
+  ASSERT_EQ(run_thetad(scratch_.path(), "campaign report " + out.string() + " --seed 4 --out " +
+                                            (scratch_.path() / "again").string()).status, 0);
+  EXPECT_EQ(testing::read_text(scratch_.path() / "again" / "report.md"), markdown);
 }
 
 TEST_F(CampaignCommand, ABadCampaignFileIsOneLineNamingFileLineAndField) {

@@ -108,6 +108,8 @@ TEST(CampaignFile, TheShippedCampaignsAreValid) {
   EXPECT_EQ(envelope.run_count(), 36 * 20 * 2);
   EXPECT_EQ(load_campaign(folder / "scenario-1-paired-fast.yaml").base_seed, paired.base_seed);
   EXPECT_EQ(load_campaign(folder / "envelope-sdre.yaml").cells.size(), 9u);
+  EXPECT_EQ(load_campaign(folder / "envelope-quick.yaml").cells, envelope.cells);
+  EXPECT_EQ(load_campaign(folder / "scenario-1-paired-sdre.yaml").controllers.size(), 3u);
 }
 
 }  // namespace
