@@ -13,7 +13,7 @@
 
 #include "core/error.hpp"
 #include "tests/apps/run_thetad.hpp"
-#include "tests/campaigns/campaign_records.hpp"
+#include "tests/campaigns/campaign_testing.hpp"
 #include "tests/scratch_directory.hpp"
 
 namespace thetad {
@@ -81,13 +81,7 @@ fixed: {duration: 0.3}
 }
 
 TEST_F(CampaignCommand, TwoMpiRanksWriteTheDatabaseOfOneProcess) {
-  const fs::path file = write_campaign(R"(campaign: mpi-test
-scenarios: [scenario-1]
-controllers: [{controller: lqr}, {label: td, controller: theta-d}]
-draws: {count: 4, base_seed: 5}
-fixed: {duration: 0.2}
-sweep: {grid: {gust_scale: [0, 2]}}
-)");
+  const fs::path file = write_campaign(testing::small_campaign("mpi-test", 4, 5, "{grid: {gust_scale: [0, 2]}}"));
   const fs::path single = scratch_.path() / "single", ranks = scratch_.path() / "ranks";
   const auto one = run_thetad(scratch_.path(), "campaign run " + file.string() + " --out " + single.string() +
                                                    " --no-timing --jobs 1");
@@ -107,13 +101,8 @@ sweep: {grid: {gust_scale: [0, 2]}}
 }
 
 TEST_F(CampaignCommand, TheReportWritesTablesJsonAndFiguresOfA2dSweep) {
-  const fs::path file = write_campaign(R"(campaign: report-test
-scenarios: [scenario-1]
-controllers: [{controller: lqr}, {label: td, controller: theta-d}]
-draws: {count: 3, base_seed: 2}
-fixed: {duration: 0.2}
-sweep: {grid: {uncertainty_scale: [0, 2], gust_scale: [0, 3]}}
-)");
+  const fs::path file = write_campaign(
+      testing::small_campaign("report-test", 3, 2, "{grid: {uncertainty_scale: [0, 2], gust_scale: [0, 3]}}"));
   const fs::path out = scratch_.path() / "out";
   ASSERT_EQ(run_thetad(scratch_.path(), "campaign run " + file.string() + " --out " + out.string()).status, 0);
   const auto report = run_thetad(scratch_.path(), "campaign report " + out.string() + " --seed 4");

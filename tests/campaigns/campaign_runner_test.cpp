@@ -8,7 +8,7 @@
 #include "campaigns/campaign_merge.hpp"
 #include "campaigns/run_plan.hpp"
 #include "core/error.hpp"
-#include "tests/campaigns/campaign_records.hpp"
+#include "tests/campaigns/campaign_testing.hpp"
 #include "tests/scratch_directory.hpp"
 
 namespace thetad {
@@ -19,18 +19,8 @@ using ::testing::HasSubstr;
 using testing::expect_same_runs;
 using testing::stored_records;
 
-// Two cells x two controllers x three draws of 0.2 s: twelve short runs.
-const std::string kCampaign = R"(campaign: runner-test
-scenarios: [scenario-1]
-controllers:
-  - {controller: lqr}
-  - {label: td, controller: theta-d}
-draws: {count: 3, base_seed: 11}
-fixed: {duration: 0.2}
-sweep:
-  grid:
-    uncertainty_scale: [0.5, 2]
-)";
+// Two cells x two controllers x three draws: twelve short runs.
+const std::string kCampaign = testing::small_campaign("runner-test", 3, 11, "{grid: {uncertainty_scale: [0.5, 2]}}");
 
 class CampaignRunner : public ::testing::Test {
  protected:

@@ -1,8 +1,10 @@
 #pragma once
 
-// Comparing campaign databases run for run, as the acceptance tests of campaigns do: every input
-// and every figure bit for bit, except the wall-clock columns.
+// What the campaign tests share: a small campaign file, and comparing campaign databases run for
+// run as the acceptance tests do (every input and every figure bit for bit, except the wall-clock
+// columns).
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -11,6 +13,14 @@
 #include "campaigns/run_record.hpp"
 
 namespace thetad::testing {
+
+// A campaign of short (0.2 s) scenario-I flights by the LQR and θ–D (label td) over `sweep` (a
+// `sweep:` value, e.g. "{grid: {gust_scale: [0, 2]}}").
+inline std::string small_campaign(const std::string& name, int draws, int base_seed, const std::string& sweep) {
+  return "campaign: " + name + "\nscenarios: [scenario-1]\ncontrollers: [{controller: lqr}, {label: td, controller: theta-d}]\n" +
+         "draws: {count: " + std::to_string(draws) + ", base_seed: " + std::to_string(base_seed) + "}\n" +
+         "fixed: {duration: 0.2}\nsweep: " + sweep + "\n";
+}
 
 inline std::vector<RunRecord> stored_records(const std::filesystem::path& out) {
   return CampaignStore(store_file(out)).records();
