@@ -3,6 +3,8 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -13,9 +15,11 @@
 namespace thetad {
 
 // Flies a campaign's runs by index, one at a time (one worker per thread or MPI rank). The flight
-// of a (cell, scenario) and its controllers are built on first use and reused for every draw: a
+// of a (cell, scenario) and the controllers are built on first use and reused for every draw: a
 // run resets its controller and reseeds the flight, so what a run computes depends on its index
-// alone, never on which worker flew what before it.
+// alone, never on which worker flew what before it. A controller is designed from the scenario's
+// model and initial state only (ControllerContext), so the cells of a scenario that start from the
+// same state share one (a sweep over disturbances designs the gain-scheduled LQR's table once).
 class CampaignWorker {
  public:
   // `timing`: false flies without wall-clock figures (--no-timing).
@@ -35,16 +39,17 @@ class CampaignWorker {
   double duration(int cell, int scenario);
 
  private:
-  struct CellFlight {
-    std::unique_ptr<Flight> flight;
-    std::vector<std::unique_ptr<PreparedController>> controllers;  // built on first use
-  };
-  CellFlight& cell_flight(int cell, int scenario);
-  PreparedController& controller(CellFlight& flight, int index);
+  Flight& flight(int cell, int scenario);
+  PreparedController& controller(const Flight& flight, int scenario, int index);
+
+  // A controller's design: scenario, initial state and controller index.
+  using DesignKey = std::tuple<int, std::vector<double>, int>;
 
   const Campaign& campaign_;
   bool timing_;
-  std::map<std::pair<int, int>, CellFlight> flights_;
+  std::map<std::pair<int, int>, std::unique_ptr<Flight>> flights_;
+  // Each refers to the model of the flight it was designed for (equal in every cell of a scenario).
+  std::map<DesignKey, std::unique_ptr<PreparedController>> controllers_;
 };
 
 }  // namespace thetad
