@@ -58,8 +58,9 @@ def completion(per_controller, controllers, out):
         rows = [r for r in per_controller if r["controller"] == controller]
         x = np.array([r["cell"] for r in rows]) + (i - (len(controllers) - 1) / 2) * width
         rate = np.array([r["completion_rate"] for r in rows])
-        low = rate - np.array([r["completion_wilson95"][0] for r in rows])
-        high = np.array([r["completion_wilson95"][1] for r in rows]) - rate
+        # Clipped at 0: at 100 % the interval's upper end can fall an ulp below the rate.
+        low = np.maximum(rate - np.array([r["completion_wilson95"][0] for r in rows]), 0.0)
+        high = np.maximum(np.array([r["completion_wilson95"][1] for r in rows]) - rate, 0.0)
         axes.errorbar(x, 100 * rate, yerr=100 * np.vstack([low, high]), fmt="o", capsize=3, label=controller,
                       color=style(i)["color"])
     axes.set_xticks([c for c, _ in cells])
