@@ -108,7 +108,13 @@ TEST(CampaignFile, TheShippedCampaignsAreValid) {
   EXPECT_EQ(envelope.run_count(), 36 * 20 * 2);
   EXPECT_EQ(load_campaign(folder / "scenario-1-paired-fast.yaml").base_seed, paired.base_seed);
   EXPECT_EQ(load_campaign(folder / "envelope-sdre.yaml").cells.size(), 9u);
-  EXPECT_EQ(load_campaign(folder / "envelope-quick.yaml").cells, envelope.cells);
+  const Campaign quick = load_campaign(folder / "envelope-quick.yaml");
+  ASSERT_EQ(quick.cells.size(), envelope.cells.size());
+  for (std::size_t i = 0; i < quick.cells.size(); ++i) {
+    FactorValues swept = quick.cells[i];
+    swept.erase(swept.begin());  // the fixed duration
+    EXPECT_EQ(swept, envelope.cells[i]) << i;
+  }
   EXPECT_EQ(load_campaign(folder / "scenario-1-paired-sdre.yaml").controllers.size(), 3u);
 }
 
