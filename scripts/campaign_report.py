@@ -94,8 +94,8 @@ def paired_rows(runs, controllers, swept, seed, resamples):
 def sentence(row):
     name = next(text for column, text, _ in FIGURES if column == row["figure"])
     word = "larger" if row["median"] > 0 else "smaller"
-    text = (f"{row['a']}'s {name} is {abs(row['median']) * 100:.1f} % "
-            f"({row['low'] * 100:+.1f} to {row['high'] * 100:+.1f} %) {word} than {row['b']}'s")
+    text = (f"{row['a']}'s {name} is {abs(row['median']) * 100:.1f} % {word} than {row['b']}'s "
+            f"(a/b - 1 = {row['median'] * 100:+.1f} %, 95 % CI {row['low'] * 100:+.1f} to {row['high'] * 100:+.1f} %)")
     if row["low"] <= 0.0 <= row["high"]:
         text += " (the interval includes 0: no clear difference)"
     return text + f", median over {row['pairs']} paired draws"
