@@ -28,6 +28,7 @@ Scenario load(const std::string& file_or_name, std::string& sha256) {
 Flight::Flight(const std::string& scenario, const RunControls& controls)
     : scenario_(load(scenario, provenance_.scenario_sha256)),
       settings_(scenario_.simulation_settings()),
+      initial_state_(offset_initial_state(controls, scenario_.initial_state)),
       model_(heli::Parameters::nominal(), scenario_.model_options) {
   apply(controls, settings_);
   provenance_.build = build_info();
@@ -59,7 +60,7 @@ std::string Flight::disturbances() const {
 }
 
 PreparedController Flight::prepare(const ControllerSpec& spec) const {
-  ControllerContext context(model_, scenario_.initial_state, 0.0);
+  ControllerContext context(model_, initial_state_, 0.0);
   context.reference = &scenario_.trajectory;
   context.duration = settings_.duration;
   context.controller_period = settings_.controller_period();
@@ -78,7 +79,7 @@ RunResult Flight::fly(PreparedController& prepared, Progress* progress, const st
   if (progress) progress->start(heading.empty() ? prepared.spec.label + ":" : heading, settings_.duration);
   const auto start = std::chrono::steady_clock::now();
   const auto report = [progress](double t) { progress->update(t); };
-  sim::RunResult flown = sim::simulate(*prepared.controller, scenario_.trajectory, scenario_.initial_state, settings_,
+  sim::RunResult flown = sim::simulate(*prepared.controller, scenario_.trajectory, initial_state_, settings_,
                                        heli::Parameters::nominal(), scenario_.model_options,
                                        progress ? std::function<void(double)>(report) : std::function<void(double)>());
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

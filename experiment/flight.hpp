@@ -37,6 +37,8 @@ class Flight {
   explicit Flight(const std::string& scenario, const RunControls& controls = {});
 
   const Scenario& scenario() const { return scenario_; }
+  // Where the helicopter starts: the scenario's initial state, moved by the controls' initial_offset.
+  const Eigen::VectorXd& initial_state() const { return initial_state_; }
   const sim::SimulationSettings& settings() const { return settings_; }
   // The controllers' model: nominal parameters, the scenario's model options, no wind.
   const heli::Helicopter& model() const { return model_; }
@@ -44,6 +46,9 @@ class Flight {
   const Provenance& provenance() const { return provenance_; }
   // "all disturbances (the paper's setting)", "ideal (...)", or the switches that differ.
   std::string disturbances() const;
+
+  // Flies the next runs with `seed` (a campaign's draws reuse one Flight and its controllers).
+  void set_seed(std::uint64_t seed) { settings_.seed = provenance_.seed = seed; }
 
   // The controller of `spec`, designed for the scenario's initial state. Errors name the settings
   // file and field. The controller refers to model(): the Flight must outlive it.
@@ -57,6 +62,7 @@ class Flight {
   Provenance provenance_;  // first: the scenario's loading fills in its SHA-256
   Scenario scenario_;
   sim::SimulationSettings settings_;
+  Eigen::VectorXd initial_state_;
   heli::Helicopter model_;
 };
 

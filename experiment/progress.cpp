@@ -12,13 +12,16 @@ Progress::Mode Progress::mode_for_stderr(bool quiet) {
   return isatty(fileno(stderr)) == 1 && std::getenv("CI") == nullptr ? Mode::live : Mode::lines;
 }
 
-Progress::Progress(Mode mode) : mode_(mode), interval_(10.0) {
+std::chrono::duration<double> progress_interval() {
   if (const char* text = std::getenv("THETAD_PROGRESS_INTERVAL")) {
     char* end = nullptr;
     const double seconds = std::strtod(text, &end);
-    if (end != text && seconds >= 0.0) interval_ = std::chrono::duration<double>(seconds);
+    if (end != text && seconds >= 0.0) return std::chrono::duration<double>(seconds);
   }
+  return std::chrono::duration<double>(10.0);
 }
+
+Progress::Progress(Mode mode) : mode_(mode), interval_(progress_interval()) {}
 
 std::string format_duration(double seconds) {
   char text[48];

@@ -36,6 +36,9 @@ class Progress {
   Clock::time_point started_, last_shown_;
 };
 
+// The time between two plain lines: 10 s, or THETAD_PROGRESS_INTERVAL=SECONDS.
+std::chrono::duration<double> progress_interval();
+
 // "2 min 05 s", "43 s".
 std::string format_duration(double seconds);
 

@@ -36,6 +36,11 @@ RunControls controls_of(const Json& settings, std::uint64_t seed) {
   controls.induced_velocity_noise = noise.at("induced_velocity").get<bool>();
   // Results written before the actuator limits existed flew without them.
   controls.actuator_limits = settings.contains("actuator_limits") && settings["actuator_limits"].at("enabled").get<bool>();
+  // Files written before the disturbance scales existed flew at the paper's strengths.
+  controls.uncertainty_scale = settings.value("uncertainty_scale", 1.0);
+  controls.noise_scale = noise.value("scale", 1.0);
+  controls.gust_scale = settings.at("wind_gust").value("amplitude_scale", 1.0);
+  controls.gust_onset = settings.at("wind_gust").value("onset_s", 0.0);
   return controls;
 }
 

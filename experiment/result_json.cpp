@@ -25,15 +25,19 @@ Json settings_json(const sim::SimulationSettings& s) {
   j["keep_log"] = s.keep_log;
   j["duration_s"] = s.duration;
   j["parameter_uncertainty"] = s.parameter_uncertainty;
+  j["uncertainty_scale"] = s.uncertainty_scale;
   j["wind_gust"] = {{"enabled", s.wind_gust.enabled},
                     {"model", to_string(s.wind_gust.model)},
                     {"sigma_m_per_s", s.wind_gust.sigma},
-                    {"correlation_time_s", s.wind_gust.correlation_time}};
+                    {"correlation_time_s", s.wind_gust.correlation_time},
+                    {"amplitude_scale", s.wind_gust.amplitude_scale},
+                    {"onset_s", s.wind_gust.onset}};
   j["noise"] = {{"measurement", s.noise.measurement},
                 {"measurement_on", to_string(s.noise.measurement_on)},
                 {"actuator", s.noise.actuator},
                 {"wind_component", s.noise.wind_component},
-                {"induced_velocity", s.noise.induced_velocity}};
+                {"induced_velocity", s.noise.induced_velocity},
+                {"scale", s.noise.scale}};
   j["divergence_limits"] = {{"max_attitude_rad", s.limits.max_attitude},
                             {"max_body_rate_rad_per_s", s.limits.max_body_rate},
                             {"max_speed_m_per_s", s.limits.max_speed},

@@ -4,6 +4,8 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/helicopter/state.hpp"
+#include "core/helicopter/uncertainty.hpp"
 
 namespace thetad {
 
@@ -57,10 +59,33 @@ void apply(const RunControls& controls, sim::SimulationSettings& settings) {
   set(controls.wind_noise, settings.noise.wind_component);
   set(controls.induced_velocity_noise, settings.noise.induced_velocity);
   set(controls.actuator_limits, settings.actuator_limits.enabled);
+  const auto scale = [](const char* name, const std::optional<double>& given, double& value) {
+    if (!given) return;
+    if (!(*given >= 0.0) || !std::isfinite(*given))
+      throw Error(std::string(name) + " " + std::to_string(*given) + ": must be finite and >= 0");
+    value = *given;
+  };
+  scale("uncertainty_scale", controls.uncertainty_scale, settings.uncertainty_scale);
+  heli::check_uncertainty_scale(settings.uncertainty_scale);
+  scale("noise_scale", controls.noise_scale, settings.noise.scale);
+  scale("gust_scale", controls.gust_scale, settings.wind_gust.amplitude_scale);
+  if (controls.gust_onset) {
+    if (!(*controls.gust_onset >= 0.0) || !std::isfinite(*controls.gust_onset))
+      throw Error("gust_onset " + seconds(*controls.gust_onset) + ": must be finite and >= 0");
+    settings.wind_gust.onset = *controls.gust_onset;
+  }
   if (controls.summary_only) settings.keep_log = !*controls.summary_only;
   if (controls.timing) settings.measure_compute_time = *controls.timing;
   // Every override given, the whole checked together (e.g. the log of a long flight must fit).
   settings.validate();
+}
+
+Eigen::VectorXd offset_initial_state(const RunControls& controls, const Eigen::VectorXd& initial_state) {
+  Eigen::VectorXd x = initial_state;
+  if (!controls.initial_offset) return x;
+  if (!controls.initial_offset->allFinite()) throw Error("initial_offset: every entry must be finite");
+  x.segment<3>(heli::kXp) += *controls.initial_offset;
+  return x;
 }
 
 }  // namespace thetad

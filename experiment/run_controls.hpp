@@ -3,6 +3,8 @@
 #include <cstdint>
 #include <optional>
 
+#include <Eigen/Core>
+
 #include "core/sim/simulator.hpp"
 
 namespace thetad {
@@ -19,12 +21,24 @@ struct RunControls {
   std::optional<bool> parameter_uncertainty, wind_gust, measurement_noise, actuator_noise, wind_noise,
       induced_velocity_noise;
   std::optional<bool> actuator_limits;   // servo magnitude and rate limits (sim::ActuatorLimits)
+  // Strengths of the disturbances (campaign sweeps): multipliers of the paper's setting.
+  std::optional<double> uncertainty_scale;  // Table 1's parameter bounds (0 nominal, 1 the paper's)
+  std::optional<double> noise_scale;        // every sensor, actuator, wind and induced-velocity noise level
+  std::optional<double> gust_scale;         // the whole wind: mean and gust deviations
+  std::optional<double> gust_onset;         // s: calm air before it
+  // Added to the scenario's initial position (m, north-east-down): the flight starts off the trajectory.
+  std::optional<Eigen::Vector3d> initial_offset;
   std::optional<bool> summary_only;      // true: no log, the summary only
   std::optional<bool> timing;            // false: no wall-clock figure anywhere (byte-identical reruns)
 };
 
 // `settings` with `controls` applied. The controller keeps sampling at the scenario's period with
-// zero-order hold, so a new dt must divide that period: otherwise thetad::Error names both.
+// zero-order hold, so a new dt must divide that period: otherwise thetad::Error names both. A scale
+// or onset out of range is an error naming it. (initial_offset acts on the initial state: Flight.)
 void apply(const RunControls& controls, sim::SimulationSettings& settings);
+
+// `initial_state` moved by controls.initial_offset (unchanged without one); a non-finite offset
+// is an error.
+Eigen::VectorXd offset_initial_state(const RunControls& controls, const Eigen::VectorXd& initial_state);
 
 }  // namespace thetad

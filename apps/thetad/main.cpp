@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "apps/thetad/bench_command.hpp"
+#include "apps/thetad/campaign_command.hpp"
 #include "apps/thetad/compare_command.hpp"
 #include "apps/thetad/demo_command.hpp"
 #include "apps/thetad/plot_command.hpp"
@@ -52,6 +53,8 @@ int main(int argc, char** argv) {
   auto* list = app.add_subcommand("list", "List the registered controllers with their descriptions and origins");
   thetad::app::BenchArguments bench_arguments;
   auto* bench = thetad::app::add_bench_command(app, bench_arguments);
+  thetad::app::CampaignArguments campaign_arguments;
+  auto* campaign = thetad::app::add_campaign_command(app, campaign_arguments);
 
   try {
     app.parse(argc, argv);
@@ -70,6 +73,7 @@ int main(int argc, char** argv) {
     if (*plot) return thetad::app::run_plot(plot_arguments);
     if (*design_lqr) return thetad::app::run_design_lqr(design_lqr_arguments);
     if (*bench) return thetad::app::run_bench(bench_arguments);
+    if (*campaign) return thetad::app::run_campaign_command(campaign_arguments);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "thetad: error: %s\n", e.what());
     return 1;

@@ -1,8 +1,7 @@
 #include "apps/thetad/plot_command.hpp"
 
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
+#include "apps/thetad/python_script.hpp"
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -21,8 +20,6 @@
 #include "core/sim/simulator.hpp"
 #include "experiment/run_files.hpp"
 #include "experiment/scenario_files.hpp"
-
-extern char** environ;
 
 namespace thetad::app {
 
@@ -93,51 +90,9 @@ struct Staging {
   }
 };
 
-// Runs `python script manifest` with MPLBACKEND=Agg, stdout and stderr to `log`; the exit status.
-int run_script(const std::string& python, const fs::path& script, const fs::path& manifest_file, const fs::path& log) {
-  std::vector<std::string> environment{"MPLBACKEND=Agg"};
-  for (char** entry = environ; *entry != nullptr; ++entry) {
-    if (std::strncmp(*entry, "MPLBACKEND=", 11) != 0) environment.emplace_back(*entry);
-  }
-  std::vector<char*> envp;
-  for (auto& entry : environment) envp.push_back(entry.data());
-  envp.push_back(nullptr);
-  std::vector<std::string> argument_text{python, script.string(), manifest_file.string()};
-  std::vector<char*> argv;
-  for (auto& argument : argument_text) argv.push_back(argument.data());
-  argv.push_back(nullptr);
-
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
-  pid_t pid = 0;
-  const int spawn_error = posix_spawnp(&pid, python.c_str(), &actions, nullptr, argv.data(), envp.data());
-  posix_spawn_file_actions_destroy(&actions);
-  if (spawn_error != 0) {
-    throw Error("cannot run the plot interpreter '" + python + "': " + std::strerror(spawn_error) +
-                " (Debian's python3-matplotlib is needed: make deps; or set THETAD_PYTHON)");
-  }
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0) {
-    if (errno != EINTR) throw Error(std::string("waiting for the plot script: ") + std::strerror(errno));
-  }
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-}
-
 std::string trimmed(std::string text) {
   while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.pop_back();
   return text;
-}
-
-// The first plotting script of the data folders: the installed one for an installed thetad (it
-// must not depend on the source tree it was built from), the source tree's for a build.
-fs::path default_plot_script() {
-  std::error_code error;
-  for (const fs::path& folder : data_directories()) {
-    if (fs::is_regular_file(folder / "scripts" / "plot_run.py", error)) return folder / "scripts" / "plot_run.py";
-  }
-  return data_directories().back() / "scripts" / "plot_run.py";
 }
 
 }  // namespace
@@ -157,7 +112,7 @@ CLI::App* add_plot_command(CLI::App& app, PlotArguments& arguments) {
       ->capture_default_str();
   plot->add_option("--baseline", arguments.baseline,
                    "Label of the run the difference panels (Euler angles) compare with; default: the first run");
-  arguments.script = default_plot_script();
+  arguments.script = shipped_script("plot_run.py");
   plot->add_option("--script", arguments.script, "The plotting script")->capture_default_str();
   return plot;
 }
@@ -166,9 +121,6 @@ int run_plot(const PlotArguments& arguments) {
   const std::vector<StoredRun> runs = read_inputs(arguments.in, arguments.baseline);
   const fs::path& script = arguments.script;
   if (!fs::is_regular_file(script)) throw Error("plot script " + script.string() + " not found (see --script)");
-  const char* python_variable = std::getenv("THETAD_PYTHON");
-  // Debian's interpreter: the one that sees python3-matplotlib, whatever python3 is first on PATH.
-  const std::string python = python_variable != nullptr ? python_variable : "/usr/bin/python3";
 
   // The staging directory is out's sibling, on the same file system so that the figures can be
   // renamed into place.
@@ -187,7 +139,7 @@ int run_plot(const PlotArguments& arguments) {
   write_file_atomically(manifest_file, manifest(runs, arguments, staging.path));
 
   std::fprintf(stderr, "plot: drawing %zu run(s) from %s\n", runs.size(), arguments.in.c_str());
-  const int status = run_script(python, script, manifest_file, log);
+  const int status = run_python_script(script, {manifest_file.string()}, log);
   const std::string messages = trimmed(read_text(log));
   if (status != 0) {
     throw Error(script.filename().string() + " failed (exit status " + std::to_string(status) + ")" +

@@ -1,5 +1,6 @@
 #include "core/helicopter/uncertainty.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -21,6 +22,19 @@ std::array<double, N> noise_percents(UncertaintyCategory category) {
 
 }  // namespace
 
+void check_uncertainty_scale(double scale) {
+  double largest = 0.0;
+  for (const auto& entry : kUncertaintyTable) {
+    if (entry.parameter != nullptr) largest = std::max(largest, entry.percent);
+  }
+  if (!(scale >= 0.0) || !(scale * largest < 100.0)) {
+    std::ostringstream message;
+    message << "uncertainty scale " << scale << ": must be >= 0 and below " << 100.0 / largest
+            << " (Table 1's largest parameter bound, " << largest << " %, times the scale must stay below 100 %)";
+    throw Error(message.str());
+  }
+}
+
 std::string_view to_string(UncertaintyCategory category) {
   switch (category) {
     case UncertaintyCategory::measurement: return "measurement";
@@ -39,7 +53,8 @@ std::array<double, kInputDim> actuator_noise_percents() { return noise_percents<
 std::array<double, 3> wind_noise_percents() { return noise_percents<3>(UncertaintyCategory::wind_noise); }
 std::array<double, 2> induced_velocity_noise_percents() { return noise_percents<2>(UncertaintyCategory::model_noise); }
 
-PerturbedParameters perturbed_parameters(const Parameters& nominal, const ParameterDraw& xi) {
+PerturbedParameters perturbed_parameters(const Parameters& nominal, const ParameterDraw& xi, double scale) {
+  check_uncertainty_scale(scale);
   PerturbedParameters out{nominal, {}};
   out.report.reserve(kUncertaintyCount);
   std::size_t next = 0;
@@ -54,8 +69,9 @@ PerturbedParameters perturbed_parameters(const Parameters& nominal, const Parame
         throw Error(message.str());
       }
       row.per_sample = false;
+      row.percent = scale * entry.percent;
       row.xi = x;
-      row.factor = 1.0 + entry.percent / 100.0 * x;
+      row.factor = 1.0 + row.percent / 100.0 * x;
       out.parameters.*entry.parameter = nominal.*entry.parameter * row.factor;
     }
     out.report.push_back(std::move(row));
@@ -63,14 +79,14 @@ PerturbedParameters perturbed_parameters(const Parameters& nominal, const Parame
   return out;
 }
 
-PerturbedParameters perturbed_parameters(const Parameters& nominal, std::mt19937_64& rng) {
+PerturbedParameters perturbed_parameters(const Parameters& nominal, std::mt19937_64& rng, double scale) {
   ParameterDraw xi;
   for (double& x : xi) {
     // 53 random bits -> [0, 1) -> [-1, 1): identical on every standard library, unlike
     // std::uniform_real_distribution.
     x = 2.0 * std::ldexp(static_cast<double>(rng() >> 11), -53) - 1.0;
   }
-  return perturbed_parameters(nominal, xi);
+  return perturbed_parameters(nominal, xi, scale);
 }
 
 PerturbedParameters worst_case_parameters(const Parameters& nominal) {

@@ -95,7 +95,7 @@ std::array<double, 2> induced_velocity_noise_percents();
 struct UncertaintyReport {
   int number;
   std::string name;
-  double percent;
+  double percent;  // the bound as applied: Table 1's times the scale for parameter entries
   UncertaintyCategory category;
   bool per_sample;  // noise entries: applied by the simulator at every sample; xi = 0, factor = 1 here
   double xi;        // parameter entries: the draw in [-1, 1]
@@ -107,15 +107,21 @@ struct PerturbedParameters {
   std::vector<UncertaintyReport> report;  // all 45 entries, in table order
 };
 
+// Throws thetad::Error unless `scale` is a valid multiplier of the parameter bounds (see below).
+void check_uncertainty_scale(double scale);
+
 // xi for the 21 parameter entries, in table order.
 using ParameterDraw = std::array<double, kParameterUncertaintyCount>;
 
 // Draws xi ~ U[-1, 1] for the 21 parameter entries in table order from rng (portable: built from
 // the generator's raw 64-bit output, so a seed gives the same draw on every standard library).
-PerturbedParameters perturbed_parameters(const Parameters& nominal, std::mt19937_64& rng);
+// `scale` multiplies every bound (0: the nominal plant, 1: Table 1, 2: twice its percents); the
+// same xi are drawn whatever the scale, so a sweep over it varies the bounds, not the draw.
+PerturbedParameters perturbed_parameters(const Parameters& nominal, std::mt19937_64& rng, double scale = 1.0);
 // The same with a given xi (e.g. a sign vector for worst cases); throws thetad::Error when an
-// entry is outside [-1, 1] or not finite.
-PerturbedParameters perturbed_parameters(const Parameters& nominal, const ParameterDraw& xi);
+// entry is outside [-1, 1] or not finite, or when `scale` is negative, not finite, or so large that
+// a factor 1 + scale percent/100 xi could reach zero (scale >= 10 with Table 1's 10 % entries).
+PerturbedParameters perturbed_parameters(const Parameters& nominal, const ParameterDraw& xi, double scale = 1.0);
 // All xi = +1.
 PerturbedParameters worst_case_parameters(const Parameters& nominal);
 

@@ -49,14 +49,14 @@ void SampleDraws::draw(std::mt19937_64& rng) {
   induced_tail = n[next++];
 }
 
-NoiseLevels NoiseLevels::from_uncertainty_table() {
+NoiseLevels NoiseLevels::from_uncertainty_table(double scale) {
   NoiseLevels levels;
-  levels.measurement = fractions(heli::measurement_noise_percents());
-  levels.actuator = fractions(heli::actuator_noise_percents());
-  levels.wind_body = fractions(heli::wind_noise_percents());
+  levels.measurement = scale * fractions(heli::measurement_noise_percents());
+  levels.actuator = scale * fractions(heli::actuator_noise_percents());
+  levels.wind_body = scale * fractions(heli::wind_noise_percents());
   const auto induced = fractions(heli::induced_velocity_noise_percents());
-  levels.induced_main = induced[0];
-  levels.induced_tail = induced[1];
+  levels.induced_main = scale * induced[0];
+  levels.induced_tail = scale * induced[1];
   return levels;
 }
 

@@ -38,8 +38,8 @@ struct NoiseLevels {
   double induced_main = 0.0;
   double induced_tail = 0.0;
 
-  // The percents of Table 1 as core/helicopter/uncertainty.hpp exports them.
-  static NoiseLevels from_uncertainty_table();
+  // The percents of Table 1 as core/helicopter/uncertainty.hpp exports them, times `scale`.
+  static NoiseLevels from_uncertainty_table(double scale = 1.0);
 };
 
 // What the 5 % measurement noise multiplies (spec §4.4, A-25).
@@ -54,6 +54,8 @@ struct NoiseSettings {
   bool actuator = true;
   bool wind_component = true;     // Table 1 #26-28
   bool induced_velocity = true;   // Table 1 #29-30
+  // Multiplies every noise level of Table 1 (campaign sweeps): 0 silences them, 2 doubles them.
+  double scale = 1.0;
 };
 
 // The measured 18-state the controller sees. Entries 0-13 carry multiplicative noise

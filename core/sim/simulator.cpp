@@ -211,6 +211,9 @@ void SimulationSettings::validate() const {
   if (!(duration >= controller_period()) || !(duration <= kMaxDuration))
     throw Error("simulate: duration must be at least one controller period and at most " +
                 std::to_string(static_cast<int>(kMaxDuration)) + " s (one simulated day)");
+  heli::check_uncertainty_scale(uncertainty_scale);
+  if (!(noise.scale >= 0.0) || !std::isfinite(noise.scale))
+    throw Error("simulate: the noise scale must be finite and non-negative");
   if (duration / controller_period() > 1e10)
     throw Error("simulate: the controller period is too short for the duration (more than 1e10 samples)");
   if (actuator_limits.enabled) actuator_limits.validate();
@@ -250,9 +253,9 @@ RunResult simulate(ControlLaw& law, const ReferenceTrajectory& reference, const 
   const auto samples = static_cast<std::int64_t>(std::llround(settings.duration / period));
 
   std::mt19937_64 rng(settings.seed);
-  const PerturbedParameters drawn = perturbed_parameters(nominal, rng);
+  const PerturbedParameters drawn = perturbed_parameters(nominal, rng, settings.uncertainty_scale);
   Helicopter plant(settings.parameter_uncertainty ? drawn.parameters : nominal, options);
-  const NoiseLevels levels = NoiseLevels::from_uncertainty_table();
+  const NoiseLevels levels = NoiseLevels::from_uncertainty_table(settings.noise.scale);
   WindGust gust(settings.wind_gust, period);
   ActuatorLimiter limiter(settings.actuator_limits, period);
   // J of Eq. (14) with the weights the controllers are designed with (the paper's, Eqs. 33-34).
@@ -283,7 +286,7 @@ RunResult simulate(ControlLaw& law, const ReferenceTrajectory& reference, const 
     t = static_cast<double>(k) * period;
     if (progress && k % kProgressSamples == 0) progress(t);
     draws.draw(rng);
-    const Eigen::Vector3d wind = gust.sample(x[kZp], draws.gust);
+    const Eigen::Vector3d wind = gust.sample(t, x[kZp], draws.gust);
     plant.set_environment(sample_environment(wind, draws, levels, settings.noise));
     const Eigen::Vector3d position_command = reference.position(t);
     measure(x, position_command, measured_integral.value, draws, levels, settings.noise, measured);

@@ -34,6 +34,8 @@ struct SimulationSettings {
   bool keep_log = true;             // false: the summary alone (no RunLog rows)
   double duration = 10.0;           // s, at most kMaxDuration; the run has round(duration / T_c) controller samples
   bool parameter_uncertainty = true;  // Table 1 parameters drawn once per run
+  // Multiplies Table 1's parameter bounds (heli::perturbed_parameters): 0 nominal, 1 the paper's, 2 twice.
+  double uncertainty_scale = 1.0;
   WindGustSettings wind_gust;
   NoiseSettings noise;
   DivergenceLimits limits;

@@ -16,6 +16,10 @@ double mean_north_wind(double z_p) {
 WindGust::WindGust(const WindGustSettings& settings, double sample_period) : settings_(settings) {
   if (!(sample_period > 0.0)) throw Error("WindGust: the sample period must be positive");
   if (!(settings.sigma >= 0.0)) throw Error("WindGust: sigma must be non-negative");
+  if (!(settings.amplitude_scale >= 0.0) || !std::isfinite(settings.amplitude_scale))
+    throw Error("WindGust: the amplitude scale must be finite and non-negative");
+  if (!(settings.onset >= 0.0) || !std::isfinite(settings.onset))
+    throw Error("WindGust: the onset must be a finite, non-negative time");
   if (settings.model == WindGustSettings::Model::gauss_markov) {
     if (!(settings.correlation_time > 0.0))
       throw Error("WindGust: the Gauss-Markov correlation time must be positive");
@@ -24,8 +28,8 @@ WindGust::WindGust(const WindGustSettings& settings, double sample_period) : set
   }
 }
 
-Eigen::Vector3d WindGust::sample(double z_p, const Eigen::Vector2d& standard_normal) {
-  if (!settings_.enabled) return Eigen::Vector3d::Zero();
+Eigen::Vector3d WindGust::sample(double t, double z_p, const Eigen::Vector2d& standard_normal) {
+  if (!settings_.enabled || t < settings_.onset) return Eigen::Vector3d::Zero();
   // The first sample is drawn from the stationary distribution in both models, so the gust is
   // statistically the same from t0 on.
   if (settings_.model == WindGustSettings::Model::held_white || !started_) {
@@ -34,7 +38,7 @@ Eigen::Vector3d WindGust::sample(double z_p, const Eigen::Vector2d& standard_nor
     deviation_ = decay_ * deviation_ + innovation_scale_ * standard_normal;
   }
   started_ = true;
-  return {mean_north_wind(z_p) + deviation_.x(), deviation_.y(), 0.0};
+  return settings_.amplitude_scale * Eigen::Vector3d(mean_north_wind(z_p) + deviation_.x(), deviation_.y(), 0.0);
 }
 
 }  // namespace thetad::sim

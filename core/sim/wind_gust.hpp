@@ -14,6 +14,10 @@ struct WindGustSettings {
   Model model = Model::held_white;
   double sigma = 0.199;            // m/s, north and east deviations
   double correlation_time = 1.0;   // s, gauss_markov only
+  // Campaign sweeps: the whole wind (mean and deviations) times amplitude_scale (0: calm air, 1: the
+  // paper's gust, 2: twice as strong), blowing from `onset` (s) on; calm air before it.
+  double amplitude_scale = 1.0;
+  double onset = 0.0;
 };
 
 // Mean north wind at the helicopter's position: max(0, 1.258 + 0.949 log10(h)) with the altitude
@@ -29,7 +33,8 @@ class WindGust {
 
   // Back to the state before the first sample.
   void reset() { started_ = false; }
-  Eigen::Vector3d sample(double z_p, const Eigen::Vector2d& standard_normal);
+  // The wind at time t (calm before the onset; the deviations start there).
+  Eigen::Vector3d sample(double t, double z_p, const Eigen::Vector2d& standard_normal);
 
  private:
   WindGustSettings settings_;

@@ -30,6 +30,17 @@ TEST(NoiseLevels, AreTheUncertaintyTablePercents) {
   EXPECT_EQ(levels.induced_tail, induced[1] / 100.0);
 }
 
+TEST(NoiseLevels, ScaleMultipliesEveryLevel) {
+  const NoiseLevels paper = NoiseLevels::from_uncertainty_table();
+  const NoiseLevels tripled = NoiseLevels::from_uncertainty_table(3.0);
+  EXPECT_EQ(tripled.measurement, 3.0 * paper.measurement);
+  EXPECT_EQ(tripled.actuator, 3.0 * paper.actuator);
+  EXPECT_EQ(tripled.wind_body, 3.0 * paper.wind_body);
+  EXPECT_EQ(tripled.induced_main, 3.0 * paper.induced_main);
+  EXPECT_EQ(tripled.induced_tail, 3.0 * paper.induced_tail);
+  EXPECT_TRUE(NoiseLevels::from_uncertainty_table(0.0).measurement.isZero());
+}
+
 TEST(SampleDraws, TakesNormalPairsInTheDocumentedOrder) {
   std::mt19937_64 rng(3), replay(3);
   SampleDraws draws;

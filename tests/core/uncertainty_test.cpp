@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <random>
 
 #include "core/error.hpp"
 
@@ -118,6 +119,29 @@ TEST(Uncertainty, WorstCaseAndSignVector) {
   EXPECT_DOUBLE_EQ(mixed.parameters.a_lon_nom, 4.2 * 0.95);      // second: -1
   signs[3] = 1.5;
   EXPECT_THROW(perturbed_parameters(kNominal, signs), Error);
+}
+
+TEST(Uncertainty, ScaleMultipliesTheBoundsOfTheSameDraw) {
+  std::mt19937_64 paper_rng(5), doubled_rng(5), nominal_rng(5);
+  const auto paper = perturbed_parameters(kNominal, paper_rng);
+  const auto doubled = perturbed_parameters(kNominal, doubled_rng, 2.0);
+  const auto nominal = perturbed_parameters(kNominal, nominal_rng, 0.0);
+  for (std::size_t i = 0; i < paper.report.size(); ++i) {
+    const auto& row = paper.report[i];
+    EXPECT_EQ(doubled.report[i].xi, row.xi) << row.name;  // the same draw, wider bounds
+    EXPECT_NEAR(doubled.report[i].factor - 1.0, 2.0 * (row.factor - 1.0), 1e-15) << row.name;
+    EXPECT_EQ(nominal.report[i].factor, 1.0) << row.name;
+    EXPECT_EQ(doubled.report[i].percent, row.per_sample ? row.percent : 2.0 * row.percent) << row.name;
+  }
+  EXPECT_EQ(nominal.parameters.mass, kNominal.mass);
+  EXPECT_NE(doubled.parameters.mass, paper.parameters.mass);
+  // Y_ped_tr's 10 % bound reaches a zero factor at scale 10: refused, as are negative scales.
+  ParameterDraw ones;
+  ones.fill(1.0);
+  EXPECT_NO_THROW(perturbed_parameters(kNominal, ones, 9.5));
+  EXPECT_THROW(perturbed_parameters(kNominal, ones, 10.0), Error);
+  EXPECT_THROW(perturbed_parameters(kNominal, ones, -0.5), Error);
+  EXPECT_THROW(check_uncertainty_scale(std::nan("")), Error);
 }
 
 }  // namespace

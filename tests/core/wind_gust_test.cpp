@@ -23,7 +23,7 @@ Moments sample_moments(const WindGustSettings& settings, double period, int coun
   WindGust gust(settings, period);
   std::mt19937_64 rng(seed);
   std::vector<Eigen::Vector3d> samples(static_cast<std::size_t>(count));
-  for (auto& sample : samples) sample = gust.sample(-3.5, standard_normal_pair(rng));
+  for (auto& sample : samples) sample = gust.sample(0.0, -3.5, standard_normal_pair(rng));
   Moments m;
   for (const auto& s : samples) m.mean += s;
   m.mean /= count;
@@ -49,7 +49,25 @@ TEST(WindGust, DisabledGivesNoWind) {
   WindGustSettings settings;
   settings.enabled = false;
   WindGust gust(settings, 1e-3);
-  EXPECT_EQ(gust.sample(-3.5, Eigen::Vector2d(1.0, -2.0)), Eigen::Vector3d::Zero());
+  EXPECT_EQ(gust.sample(0.0, -3.5, Eigen::Vector2d(1.0, -2.0)), Eigen::Vector3d::Zero());
+}
+
+TEST(WindGust, AmplitudeScaleMultipliesTheWholeWindFromTheOnset) {
+  WindGustSettings settings;
+  settings.amplitude_scale = 2.5;
+  settings.onset = 1.0;
+  WindGust scaled(settings, 1e-3);
+  WindGust paper(WindGustSettings{}, 1e-3);
+  const Eigen::Vector2d normal(0.3, -1.2);
+  EXPECT_EQ(scaled.sample(0.999, -3.5, normal), Eigen::Vector3d::Zero());  // calm before the onset
+  const Eigen::Vector3d expected = 2.5 * paper.sample(1.0, -3.5, normal);
+  EXPECT_EQ(scaled.sample(1.0, -3.5, normal), expected);
+  EXPECT_GT(expected.x(), 2.5 * mean_north_wind(-3.5) - 2.5 * 0.199 * 0.3 - 1e-12);
+  settings.amplitude_scale = -1.0;
+  EXPECT_THROW(WindGust(settings, 1e-3), Error);
+  settings.amplitude_scale = 1.0;
+  settings.onset = -0.1;
+  EXPECT_THROW(WindGust(settings, 1e-3), Error);
 }
 
 // 200 000 independent samples: the standard error of the mean is sigma/sqrt(N) = 4.4e-4 m/s and

@@ -1,5 +1,6 @@
 #include "experiment/flight.hpp"
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -53,6 +54,39 @@ TEST(Flight, RunControlsOverrideTheScenario) {
   const RunResult run = fly(flight, "lqr");
   EXPECT_EQ(run.summary.controller_samples, 500);
   EXPECT_EQ(run.log.rows(), 50);
+}
+
+TEST(Flight, DisturbanceScalesAndTheInitialOffsetOverrideTheScenario) {
+  RunControls controls = seconds(0.2);
+  controls.uncertainty_scale = 2.0;
+  controls.noise_scale = 0.5;
+  controls.gust_scale = 3.0;
+  controls.gust_onset = 0.1;
+  controls.initial_offset = Eigen::Vector3d(1.0, -0.5, 0.25);
+  const Flight flight(kScenario, controls);
+  EXPECT_EQ(flight.settings().uncertainty_scale, 2.0);
+  EXPECT_EQ(flight.settings().noise.scale, 0.5);
+  EXPECT_EQ(flight.settings().wind_gust.amplitude_scale, 3.0);
+  EXPECT_EQ(flight.settings().wind_gust.onset, 0.1);
+  const Eigen::VectorXd moved = flight.initial_state() - flight.scenario().initial_state;
+  EXPECT_EQ(moved.segment<3>(0), Eigen::Vector3d(1.0, -0.5, 0.25));
+  EXPECT_TRUE(moved.tail(moved.size() - 3).isZero());
+  // The paper's flight and the scaled one differ; the same scaled flight twice is identical.
+  controls.timing = false;
+  const RunResult scaled = fly(Flight(kScenario, controls), "lqr");
+  EXPECT_EQ(fly(Flight(kScenario, controls), "lqr").summary.cost, scaled.summary.cost);
+  RunControls paper = seconds(0.2);
+  paper.timing = false;
+  EXPECT_NE(fly(Flight(kScenario, paper), "lqr").summary.cost, scaled.summary.cost);
+
+  controls.uncertainty_scale = 12.0;
+  EXPECT_THROW(Flight(kScenario, controls), Error);
+  controls.uncertainty_scale = 1.0;
+  controls.noise_scale = -1.0;
+  EXPECT_THROW(Flight(kScenario, controls), Error);
+  controls.noise_scale = 1.0;
+  controls.gust_onset = std::nan("");
+  EXPECT_THROW(Flight(kScenario, controls), Error);
 }
 
 TEST(Flight, APlantStepThatDoesNotDivideTheControllerPeriodIsAnErrorNamingBoth) {

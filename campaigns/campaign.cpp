@@ -1,0 +1,174 @@
+#include "campaigns/campaign.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "experiment/scenario_files.hpp"
+#include "experiment/sha256.hpp"
+#include "experiment/text_file.hpp"
+#include "settings/settings.hpp"
+
+namespace thetad {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// A scenario as the campaign names it: a file relative to the campaign file's folder, or a shipped
+// name. Resolved to what find_scenario accepts, so the campaign flies the same file from any folder.
+std::string resolve_scenario(const std::string& given, const fs::path& campaign_file) {
+  const fs::path beside = campaign_file.parent_path() / given;
+  if (fs::is_regular_file(beside)) return fs::absolute(beside).lexically_normal().string();
+  return find_scenario(given).string();
+}
+
+std::vector<std::string> read_scenarios(const YAML::Node& node, const fs::path& file) {
+  const Settings root(node);
+  const YAML::Node list = node["scenarios"];
+  if (!list || !list.IsSequence() || list.size() == 0)
+    throw root.error("scenarios", "expected a non-empty list of scenario files or shipped names");
+  std::vector<std::string> scenarios;
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const std::string field = "scenarios[" + std::to_string(i) + "]";
+    if (!list[i].IsScalar()) throw SettingsError(field, "expected a scenario file or name", list[i].Mark());
+    try {
+      scenarios.push_back(resolve_scenario(list[i].Scalar(), file));
+    } catch (const Error& error) {
+      throw SettingsError(field, error.what(), list[i].Mark());
+    }
+  }
+  return scenarios;
+}
+
+// One factor's value, checked against the factor's range.
+double factor_value(const YAML::Node& node, const std::string& field, const Factor& factor) {
+  double value = 0.0;
+  try {
+    value = node.as<double>();
+  } catch (const YAML::Exception&) {
+    throw SettingsError(field, "expected a number", node.Mark());
+  }
+  if (!std::isfinite(value) || value < factor.min || value > factor.max) {
+    std::ostringstream reason;
+    reason << "value " << node.Scalar() << " is outside [" << factor.min << ", " << factor.max << "]";
+    throw SettingsError(field, reason.str(), node.Mark());
+  }
+  return value;
+}
+
+const Factor& known_factor(const std::string& name, const std::string& field, const YAML::Mark& mark) {
+  const Factor* factor = find_factor(name);
+  if (factor == nullptr)
+    throw SettingsError(field, "unknown factor '" + name + "' (known: " + factor_names() + ")", mark);
+  return *factor;
+}
+
+// `fixed:` — factors every run shares.
+FactorValues read_fixed(const YAML::Node& node) {
+  FactorValues fixed;
+  if (!node) return fixed;
+  if (!node.IsMap()) throw SettingsError("fixed", "expected a map from factor to value", node.Mark());
+  for (const auto& entry : node) {
+    const std::string name = entry.first.Scalar(), field = "fixed." + name;
+    const Factor& factor = known_factor(name, field, entry.first.Mark());
+    fixed.emplace_back(name, factor_value(entry.second, field, factor));
+  }
+  return fixed;
+}
+
+// `sweep: {grid: {factor: [values]}}` (every combination, the first factor slowest) or
+// `sweep: {list: [{factor: value, ...}, ...]}` (those cells; every item names the same factors).
+std::vector<FactorValues> read_sweep(const YAML::Node& node, const FactorValues& fixed, std::vector<std::string>& swept) {
+  std::vector<FactorValues> cells{fixed};
+  if (!node) return cells;
+  const Settings sweep(node, "sweep");
+  sweep.allow_only({"grid", "list"});
+  if (sweep.has("grid") == sweep.has("list")) throw sweep.error("grid", "give exactly one of 'grid' or 'list'");
+  const auto check_not_fixed = [&](const std::string& name, const std::string& field, const YAML::Mark& mark) {
+    for (const auto& [fixed_name, value] : fixed) {
+      if (fixed_name == name) throw SettingsError(field, "factor '" + name + "' is also fixed", mark);
+    }
+  };
+  if (sweep.has("grid")) {
+    const YAML::Node grid = node["grid"];
+    if (!grid.IsMap() || grid.size() == 0) throw sweep.error("grid", "expected a map from factor to a list of values");
+    for (const auto& axis : grid) {
+      const std::string name = axis.first.Scalar(), field = "sweep.grid." + name;
+      const Factor& factor = known_factor(name, field, axis.first.Mark());
+      check_not_fixed(name, field, axis.first.Mark());
+      if (!axis.second.IsSequence() || axis.second.size() == 0)
+        throw SettingsError(field, "expected a non-empty list of values", axis.second.Mark());
+      std::vector<FactorValues> next;
+      for (const FactorValues& cell : cells) {
+        for (std::size_t i = 0; i < axis.second.size(); ++i) {
+          FactorValues extended = cell;
+          extended.emplace_back(name, factor_value(axis.second[i], field + "[" + std::to_string(i) + "]", factor));
+          next.push_back(std::move(extended));
+        }
+      }
+      cells = std::move(next);
+      swept.push_back(name);
+    }
+    return cells;
+  }
+  const YAML::Node list = node["list"];
+  if (!list.IsSequence() || list.size() == 0) throw sweep.error("list", "expected a non-empty list of cells");
+  std::vector<FactorValues> listed;
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const std::string item = "sweep.list[" + std::to_string(i) + "]";
+    if (!list[i].IsMap() || list[i].size() == 0) throw SettingsError(item, "expected a map from factor to value", list[i].Mark());
+    FactorValues cell = fixed;
+    std::vector<std::string> names;
+    for (const auto& entry : list[i]) {
+      const std::string name = entry.first.Scalar(), field = item + "." + name;
+      const Factor& factor = known_factor(name, field, entry.first.Mark());
+      check_not_fixed(name, field, entry.first.Mark());
+      cell.emplace_back(name, factor_value(entry.second, field, factor));
+      names.push_back(name);
+    }
+    if (i == 0) swept = names;
+    if (names != swept) throw SettingsError(item, "every cell of the list must set the same factors, in the same order, as the first", list[i].Mark());
+    listed.push_back(std::move(cell));
+  }
+  return listed;
+}
+
+}  // namespace
+
+Campaign parse_campaign(const std::string& text, const fs::path& file) {
+  return with_settings_source(file.string(), [&] {
+    YAML::Node node;
+    try {
+      node = YAML::Load(text);
+    } catch (const YAML::Exception& error) {
+      throw SettingsError("(file)", error.msg, error.mark);
+    }
+    if (!node.IsMap()) throw SettingsError("(file)", "expected a map (docs/campaigns.md)", node.Mark());
+    const Settings root(node);
+    root.allow_only({"campaign", "scenarios", "controllers", "draws", "fixed", "sweep", "summary_only"});
+    Campaign campaign;
+    campaign.file = file;
+    campaign.text = text;
+    campaign.sha256 = sha256_hex(text);
+    if (!root.has("campaign")) throw root.error("campaign", "missing (required): the campaign's name");
+    campaign.name = root.string("campaign", "");
+    if (campaign.name.empty()) throw root.error("campaign", "must not be empty");
+    campaign.scenarios = read_scenarios(node, file);
+    if (!root.has("controllers")) throw root.error("controllers", "missing (required)");
+    campaign.controllers = read_controller_specs(node["controllers"], file.string());
+    if (!root.has("draws")) throw root.error("draws", "missing (required): {count, base_seed}");
+    const Settings draws = root.block("draws");
+    draws.allow_only({"count", "base_seed"});
+    if (!draws.has("count")) throw draws.error("count", "missing (required)");
+    campaign.draws = draws.integer("count", 0, 1, 1000000);
+    const int seed = draws.integer("base_seed", 1, 0);
+    campaign.base_seed = static_cast<std::uint64_t>(seed);
+    campaign.summary_only = root.boolean("summary_only", true);
+    campaign.cells = read_sweep(node["sweep"], read_fixed(node["fixed"]), campaign.swept);
+    return campaign;
+  });
+}
+
+Campaign load_campaign(const fs::path& file) { return parse_campaign(read_text_file(file), file); }
+
+}  // namespace thetad

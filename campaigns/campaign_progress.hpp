@@ -1,0 +1,36 @@
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <string>
+
+#include "experiment/progress.hpp"
+
+namespace thetad {
+
+// A campaign's progress on stderr: runs done of the total, the rate, the ETA and the failures so
+// far. Redrawn in place on a terminal; a plain line every progress_interval() (10 s) under CI, in
+// a pipe or in a cluster job's log.
+class CampaignProgress {
+ public:
+  // `total` runs of which `done` are already stored (resume).
+  CampaignProgress(Progress::Mode mode, std::string name, std::int64_t total, std::int64_t done);
+
+  void add(bool diverged);
+  void finish();
+
+  std::int64_t flown() const { return flown_; }
+  std::int64_t diverged() const { return diverged_; }
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  std::string status() const;
+
+  Progress::Mode mode_;
+  std::string name_;
+  std::int64_t total_, stored_, flown_ = 0, diverged_ = 0;
+  std::chrono::duration<double> interval_;
+  Clock::time_point started_, last_shown_;
+};
+
+}  // namespace thetad

@@ -1,0 +1,34 @@
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+
+#include "campaigns/campaign.hpp"
+#include "campaigns/run_plan.hpp"
+#include "experiment/progress.hpp"
+
+namespace thetad {
+
+struct CampaignOptions {
+  std::filesystem::path out;  // the folder of campaign.sqlite
+  Shard shard;                // 1/1: the whole campaign
+  int jobs = 0;               // worker threads; 0: every core (one per rank under mpirun)
+  bool resume = false;        // continue the database in `out`, skipping the runs it holds
+  bool timing = true;         // false: no wall-clock figure (--no-timing)
+  Progress::Mode progress = Progress::Mode::lines;
+};
+
+struct CampaignOutcome {
+  std::int64_t runs = 0;      // of the shard
+  std::int64_t flown = 0;     // by this invocation
+  std::int64_t diverged = 0;  // of those flown
+  bool writer = true;         // false on MPI ranks other than 0 (they print nothing)
+};
+
+// Flies every run of the shard that `out` does not hold yet and stores it (CampaignStore). Worker
+// threads take the next run index as they finish (dynamic scheduling), and the calling thread is
+// the one writer. Under mpirun (MpiSession) rank 0 also hands out run indices to the other ranks.
+// The stored rows depend on the run indices alone: the same for any --jobs, rank count or sharding.
+CampaignOutcome run_campaign(const Campaign& campaign, const CampaignOptions& options);
+
+}  // namespace thetad

@@ -1,0 +1,64 @@
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "campaigns/campaign.hpp"
+#include "campaigns/run_plan.hpp"
+#include "campaigns/run_record.hpp"
+
+struct sqlite3;
+
+namespace thetad {
+
+// The SQLite database of one campaign (or one shard of it): a `runs` table (one row per run: every
+// input factor, seed, status, divergence reason and summary figure, keyed by the run index) and a
+// `meta` table (the campaign file, its SHA-256, the shard, and the experiment library's provenance
+// of each scenario's flights). Rows are committed in transactions as runs finish, so a killed campaign loses at most
+// the runs in flight, and reopening with resume skips the runs already stored. One writer: the
+// thread (or MPI rank 0) that owns this object.
+class CampaignStore {
+ public:
+  enum class Open { create, resume };
+  // Creates `file` (refusing an existing one) or resumes it (refusing a database of another
+  // campaign or shard: the SHA-256 of the campaign file and the shard must match). `provenance`
+  // (JSON) is stored on creation: what produced the runs (CampaignWorker::provenance()).
+  CampaignStore(const std::filesystem::path& file, const Campaign& campaign, const Shard& shard, Open open,
+                const std::string& provenance);
+  // Opens an existing database to read (merge).
+  explicit CampaignStore(const std::filesystem::path& file);
+  // Creates `file` for the runs of `like`'s campaign as a whole (merge): its meta table, shard 1/1.
+  CampaignStore(const std::filesystem::path& file, const CampaignStore& like);
+  ~CampaignStore();
+  CampaignStore(const CampaignStore&) = delete;
+  CampaignStore& operator=(const CampaignStore&) = delete;
+
+  // The run indices already stored.
+  std::set<std::int64_t> stored() const;
+  // Every stored record, by run index.
+  std::vector<RunRecord> records() const;
+  // Stores `records` in one transaction.
+  void write(const std::vector<RunRecord>& records);
+
+  // A value of the meta table ("" when absent).
+  std::string meta(const std::string& key) const;
+  void set_meta(const std::string& key, const std::string& value);
+
+  const std::filesystem::path& file() const { return file_; }
+
+ private:
+  void execute(const std::string& sql) const;
+  void create_tables();
+  void create_schema(const Campaign& campaign, const Shard& shard, const std::string& provenance);
+
+  std::filesystem::path file_;
+  sqlite3* db_ = nullptr;
+};
+
+// The database file of a campaign's output folder.
+std::filesystem::path store_file(const std::filesystem::path& out);
+
+}  // namespace thetad

@@ -1,0 +1,69 @@
+#include "campaigns/factors.hpp"
+
+#include <limits>
+
+#include "core/error.hpp"
+
+namespace thetad {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// The initial offset is a vector in RunControls; a campaign sweeps its axes one by one.
+void offset_axis(RunControls& controls, int axis, double value) {
+  if (!controls.initial_offset) controls.initial_offset = Eigen::Vector3d::Zero();
+  (*controls.initial_offset)[axis] = value;
+}
+
+}  // namespace
+
+const std::vector<Factor>& factors() {
+  static const std::vector<Factor> all = {
+      {"uncertainty_scale", "", "multiplies Table 1's 21 parameter bounds (0 nominal plant, 1 the paper's, 2 twice)",
+       0.0, 9.99, [](double v, RunControls& c) { c.uncertainty_scale = v; }},
+      {"gust_scale", "", "multiplies the whole wind, mean and gust (0 calm, 1 the paper's gust)", 0.0, kInf,
+       [](double v, RunControls& c) { c.gust_scale = v; }},
+      {"gust_onset", "s", "time the wind starts blowing (calm air before)", 0.0, kInf,
+       [](double v, RunControls& c) { c.gust_onset = v; }},
+      {"noise_scale", "", "multiplies every sensor, actuator, wind-component and induced-velocity noise level", 0.0,
+       kInf, [](double v, RunControls& c) { c.noise_scale = v; }},
+      {"initial_offset_x", "m", "added to the initial north position", -kInf, kInf,
+       [](double v, RunControls& c) { offset_axis(c, 0, v); }},
+      {"initial_offset_y", "m", "added to the initial east position", -kInf, kInf,
+       [](double v, RunControls& c) { offset_axis(c, 1, v); }},
+      {"initial_offset_z", "m", "added to the initial down position (negative: higher)", -kInf, kInf,
+       [](double v, RunControls& c) { offset_axis(c, 2, v); }},
+      {"dt", "s", "plant (RK4) step; must divide the controller period", 0.0, kInf,
+       [](double v, RunControls& c) { c.dt = v; }},
+      {"duration", "s", "flight duration (shorter than the scenario: the flight stops there)", 0.0,
+       sim::SimulationSettings::kMaxDuration, [](double v, RunControls& c) { c.duration = v; }},
+  };
+  return all;
+}
+
+const Factor* find_factor(std::string_view name) {
+  for (const Factor& factor : factors()) {
+    if (factor.name == name) return &factor;
+  }
+  return nullptr;
+}
+
+std::string factor_names() {
+  std::string names;
+  for (const Factor& factor : factors()) {
+    if (!names.empty()) names += ", ";
+    names += factor.name;
+  }
+  return names;
+}
+
+void apply(const FactorValues& values, RunControls& controls) {
+  for (const auto& [name, value] : values) {
+    const Factor* factor = find_factor(name);
+    if (factor == nullptr) throw Error("unknown campaign factor '" + name + "' (known: " + factor_names() + ")");
+    factor->apply(value, controls);
+  }
+}
+
+}  // namespace thetad

@@ -1,0 +1,35 @@
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "experiment/run_controls.hpp"
+
+namespace thetad {
+
+// The conditions a campaign may fix or sweep. Each factor is one documented override of a run
+// (RunControls), so a campaign's cell means what `thetad run` with the same override means.
+struct Factor {
+  std::string_view name;
+  std::string_view unit;         // "" for scales
+  std::string_view description;  // for docs and --help
+  double min, max;               // the accepted range (RunControls checks the rest, e.g. dt divides the period)
+  void (*apply)(double value, RunControls& controls);
+};
+
+// Every factor, in the order the runs table lists them.
+const std::vector<Factor>& factors();
+// The factor named `name`; nullptr when there is none.
+const Factor* find_factor(std::string_view name);
+// "uncertainty_scale, noise_scale, ..." for messages.
+std::string factor_names();
+
+// A set of factor values: one sweep cell (fixed factors included), in the order they were given.
+using FactorValues = std::vector<std::pair<std::string, double>>;
+
+// `controls` with every value of `values` applied (each by its factor's override).
+void apply(const FactorValues& values, RunControls& controls);
+
+}  // namespace thetad

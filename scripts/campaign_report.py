@@ -1,0 +1,173 @@
+#!/usr/bin/env python3
+"""thetad campaign report: the statistics of a campaign database as a Markdown table, a JSON file
+and figures (docs/campaigns.md). Run by `thetad campaign report DIR` under Debian's Python:
+
+    /usr/bin/python3 campaign_report.py DIR/campaign.sqlite OUT [--seed N] [--resamples N]
+
+Per controller and sweep cell: completion rate with its Wilson 95 % interval; mean, median, p90,
+p99 and max of each figure over the completed runs (a diverged run's figures cover only the flight
+up to its divergence); the divergence reasons tallied; and paired relative differences between
+controllers over the draws both completed, with seeded bootstrap intervals (campaign_stats.py).
+"""
+
+import argparse
+import itertools
+import json
+import os
+import sqlite3
+import sys
+
+import pandas as pd
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import campaign_stats  # noqa: E402
+import plot_campaign  # noqa: E402
+
+FORMAT = "thetad-campaign-1"
+# The figures summarized per controller and cell: column, what it is, unit.
+FIGURES = [
+    ("rms_error_m", "RMS position error", "m"),
+    ("max_error_m", "max position error", "m"),
+    ("cost", "cost J", ""),
+    ("effort_thrust_N", "thrust effort (RMS)", "N"),
+    ("compute_us_mean", "compute time per step", "us"),
+]
+# The figures compared in pairs (timing is not: it is not paired by the draw).
+PAIRED = ["rms_error_m", "max_error_m", "cost"]
+
+
+def read_campaign(database):
+    with sqlite3.connect(f"file:{database}?mode=ro", uri=True) as connection:
+        meta = dict(connection.execute("SELECT key, value FROM meta").fetchall())
+        if meta.get("format") != FORMAT:
+            raise SystemExit(f"{database}: not a thetad campaign database ({FORMAT})")
+        runs = pd.read_sql("SELECT * FROM runs ORDER BY run_index", connection)
+    return meta, runs
+
+
+def cell_label(row, swept):
+    if not swept:
+        return "all runs"
+    return ", ".join(f"{name}={row[name]:g}" for name in swept)
+
+
+def controller_rows(runs, controllers, swept):
+    rows = []
+    for (cell, label), group in runs.groupby(["cell", "controller"], sort=False):
+        completed = group[group.status == "completed"]
+        low, high = campaign_stats.wilson_interval(len(completed), len(group))
+        reasons = group[group.status != "completed"].reason.map(campaign_stats.reason_kind).value_counts()
+        rows.append({
+            "cell": int(cell),
+            "cell_label": cell_label(group.iloc[0], swept),
+            "factors": {name: float(group.iloc[0][name]) for name in swept},
+            "controller": label,
+            "runs": int(len(group)),
+            "completed": int(len(completed)),
+            "completion_rate": len(completed) / len(group),
+            "completion_wilson95": [low, high],
+            "figures": {column: campaign_stats.summary(completed[column]) for column, _, _ in FIGURES},
+            "divergence_reasons": {str(k): int(v) for k, v in reasons.items()},
+        })
+    order = {label: i for i, label in enumerate(controllers)}
+    return sorted(rows, key=lambda r: (r["cell"], order[r["controller"]]))
+
+
+def paired_rows(runs, controllers, swept, seed, resamples):
+    rows = []
+    for cell, group in runs.groupby("cell", sort=True):
+        completed = group[group.status == "completed"]
+        for (i, a), (j, b) in itertools.combinations(enumerate(controllers), 2):
+            left = completed[completed.controller == a].set_index(["scenario", "draw"])
+            right = completed[completed.controller == b].set_index(["scenario", "draw"])
+            both = left.join(right, how="inner", lsuffix="_a", rsuffix="_b")
+            for m, column in enumerate(PAIRED):
+                result = campaign_stats.paired_relative_difference(
+                    both[column + "_a"], both[column + "_b"], seed=[seed, int(cell), i, j, m], resamples=resamples)
+                if result is None:
+                    continue
+                rows.append({"cell": int(cell), "cell_label": cell_label(group.iloc[0], swept), "a": a, "b": b,
+                             "figure": column, **result})
+    return rows
+
+
+def sentence(row):
+    name = next(text for column, text, _ in FIGURES if column == row["figure"])
+    word = "larger" if row["median"] > 0 else "smaller"
+    text = (f"{row['a']}'s {name} is {abs(row['median']) * 100:.1f} % {word} than {row['b']}'s "
+            f"(a/b - 1 = {row['median'] * 100:+.1f} %, 95 % CI {row['low'] * 100:+.1f} to {row['high'] * 100:+.1f} %)")
+    if row["low"] <= 0.0 <= row["high"]:
+        text += " (the interval includes 0: no clear difference)"
+    return text + f", median over {row['pairs']} paired draws"
+
+
+def markdown(meta, per_controller, paired, seed, resamples):
+    lines = [f"# Campaign {meta['campaign_name']}", "",
+             f"Database: {meta['run_count']} runs, campaign file SHA-256 `{meta['campaign_sha256']}`.",
+             "Completion: Wilson 95 % interval. Figures over completed runs: mean / median / p90 / p99 / max "
+             f"(numpy quantiles, method '{campaign_stats.QUANTILE_METHOD}'). Paired differences: median of a/b - 1 "
+             f"over the draws both completed, percentile bootstrap 95 % ({resamples} resamples, seed {seed}).", ""]
+    header = "| cell | controller | completed | rate (95 % CI) | " + " | ".join(
+        f"{text} [{unit}]" if unit else text for _, text, unit in FIGURES) + " | divergences |"
+    lines += [header, "|" + "---|" * (5 + len(FIGURES))]
+    for row in per_controller:
+        cells = []
+        for column, _, _ in FIGURES:
+            s = row["figures"][column]
+            cells.append("-" if s["n"] == 0 else
+                         f"{s['mean']:.4g} / {s['median']:.4g} / {s['p90']:.4g} / {s['p99']:.4g} / {s['max']:.4g}")
+        low, high = row["completion_wilson95"]
+        reasons = "; ".join(f"{k}: {v}" for k, v in row["divergence_reasons"].items()) or "-"
+        lines.append(f"| {row['cell_label']} | {row['controller']} | {row['completed']}/{row['runs']} | "
+                     f"{row['completion_rate'] * 100:.1f} % ({low * 100:.1f}-{high * 100:.1f} %) | "
+                     + " | ".join(cells) + f" | {reasons} |")
+    if paired:
+        lines += ["", "## Paired differences"]
+        current = None
+        for row in paired:
+            if row["cell_label"] != current:
+                current = row["cell_label"]
+                lines += ["", f"**{current}**", ""]
+            lines.append("- " + sentence(row))
+    return "\n".join(lines) + "\n"
+
+
+def write_atomically(path, text):
+    partial = path + ".partial"
+    with open(partial, "w", encoding="utf-8") as out:
+        out.write(text)
+    os.replace(partial, path)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("database")
+    parser.add_argument("out")
+    parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--resamples", type=int, default=2000)
+    args = parser.parse_args()
+    meta, runs = read_campaign(args.database)
+    if runs.empty:
+        raise SystemExit(f"{args.database}: no runs stored yet")
+    controllers = json.loads(meta["controllers"])
+    swept = json.loads(meta["swept"])
+    per_controller = controller_rows(runs, controllers, swept)
+    paired = paired_rows(runs, controllers, swept, args.seed, args.resamples)
+    for row in paired:
+        row["sentence"] = sentence(row)
+    os.makedirs(args.out, exist_ok=True)
+    report = {"format": "thetad-campaign-report-1", "campaign": meta["campaign_name"],
+              "campaign_sha256": meta["campaign_sha256"], "runs_stored": int(len(runs)),
+              "run_count": int(meta["run_count"]), "provenance": json.loads(meta["provenance"]),
+              "statistics": {"wilson_confidence": 0.95, "quantile_method": campaign_stats.QUANTILE_METHOD,
+                             "bootstrap": {"method": "percentile", "resamples": args.resamples, "seed": args.seed}},
+              "controllers": per_controller, "paired": paired}
+    figures = plot_campaign.draw_figures(runs, per_controller, controllers, swept, args.out)
+    report["figures"] = figures
+    write_atomically(os.path.join(args.out, "report.json"), json.dumps(report, indent=1) + "\n")
+    write_atomically(os.path.join(args.out, "report.md"), markdown(meta, per_controller, paired, args.seed, args.resamples))
+    print(f"wrote report.md, report.json and {len(figures)} figures to {args.out}")
+
+
+if __name__ == "__main__":
+    main()

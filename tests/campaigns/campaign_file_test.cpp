@@ -1,0 +1,122 @@
+#include "campaigns/campaign.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "core/error.hpp"
+
+namespace thetad {
+namespace {
+
+using ::testing::AllOf;
+using ::testing::HasSubstr;
+
+const std::filesystem::path kFile = THETAD_SOURCE_DIR "/scenarios/campaigns/test.yaml";
+
+// The message of the error parsing `text` throws (as if it were kFile).
+std::string error_of(const std::string& text) {
+  try {
+    parse_campaign(text, kFile);
+  } catch (const Error& error) {
+    return error.what();
+  }
+  return "no error";
+}
+
+const std::string kHead = R"(campaign: tiny
+scenarios: [scenario-1]
+controllers:
+  - {label: td, controller: theta-d}
+  - {controller: lqr}
+draws: {count: 3, base_seed: 7}
+)";
+
+TEST(CampaignFile, AGridIsEveryCombinationWithTheFirstFactorSlowest) {
+  const Campaign campaign = parse_campaign(kHead + R"(fixed: {duration: 0.5}
+sweep:
+  grid:
+    uncertainty_scale: [0, 1, 2]
+    gust_scale: [0.5, 1.5]
+)",
+                                           kFile);
+  EXPECT_EQ(campaign.name, "tiny");
+  ASSERT_EQ(campaign.controllers.size(), 2u);
+  EXPECT_EQ(campaign.controllers[0].label, "td");
+  EXPECT_EQ(campaign.controllers[1].label, "lqr");
+  EXPECT_EQ(campaign.draws, 3);
+  EXPECT_EQ(campaign.base_seed, 7u);
+  EXPECT_EQ(campaign.swept, (std::vector<std::string>{"uncertainty_scale", "gust_scale"}));
+  ASSERT_EQ(campaign.cells.size(), 6u);
+  const FactorValues second{{"duration", 0.5}, {"uncertainty_scale", 0.0}, {"gust_scale", 1.5}};
+  EXPECT_EQ(campaign.cells[1], second);
+  const FactorValues last{{"duration", 0.5}, {"uncertainty_scale", 2.0}, {"gust_scale", 1.5}};
+  EXPECT_EQ(campaign.cells[5], last);
+  EXPECT_EQ(campaign.run_count(), 6 * 2 * 3);
+  EXPECT_EQ(campaign.sha256.size(), 64u);
+  EXPECT_TRUE(campaign.summary_only);
+}
+
+TEST(CampaignFile, AListGivesItsCellsAndNoSweepGivesOneCell) {
+  const Campaign listed = parse_campaign(kHead + R"(sweep:
+  list:
+    - {noise_scale: 0, initial_offset_x: 1}
+    - {noise_scale: 2, initial_offset_x: -1}
+)",
+                                         kFile);
+  ASSERT_EQ(listed.cells.size(), 2u);
+  EXPECT_EQ(listed.cells[1], (FactorValues{{"noise_scale", 2.0}, {"initial_offset_x", -1.0}}));
+  const Campaign single = parse_campaign(kHead, kFile);
+  ASSERT_EQ(single.cells.size(), 1u);
+  EXPECT_TRUE(single.cells[0].empty());
+  EXPECT_EQ(single.run_count(), 6);
+}
+
+TEST(CampaignFile, ErrorsNameTheFileTheLineAndTheField) {
+  const std::string file = kFile.string();
+  EXPECT_THAT(error_of(kHead + "drwas: 3\n"),
+              AllOf(HasSubstr(file + ":7:1: field 'drwas'"), HasSubstr("unknown")));
+  EXPECT_THAT(error_of(kHead + "sweep:\n  grid:\n    gust_scael: [1, 2]\n"),
+              AllOf(HasSubstr(file + ":9:5: field 'sweep.grid.gust_scael'"), HasSubstr("unknown factor"),
+                    HasSubstr("gust_scale")));
+  EXPECT_THAT(error_of(kHead + "sweep:\n  grid:\n    uncertainty_scale: [1, -2]\n"),
+              AllOf(HasSubstr(file + ":9:28: field 'sweep.grid.uncertainty_scale[1]'"), HasSubstr("outside")));
+  EXPECT_THAT(error_of(kHead + "fixed: {noise_scale: loud}\n"),
+              AllOf(HasSubstr(file + ":7:22: field 'fixed.noise_scale'"), HasSubstr("expected a number")));
+  EXPECT_THAT(error_of(kHead + "fixed: {gust_scale: 1}\nsweep: {grid: {gust_scale: [1, 2]}}\n"),
+              HasSubstr("field 'sweep.grid.gust_scale': factor 'gust_scale' is also fixed"));
+  EXPECT_THAT(error_of(kHead + "sweep:\n  list:\n    - {noise_scale: 1}\n    - {gust_scale: 1}\n"),
+              AllOf(HasSubstr(file + ":10:7: field 'sweep.list[1]'"), HasSubstr("same factors")));
+  EXPECT_THAT(error_of("campaign: x\nscenarios: [no-such-scenario]\ncontrollers: [{controller: lqr}]\ndraws: {count: 1}\n"),
+              AllOf(HasSubstr(file + ":2:13: field 'scenarios[0]'"), HasSubstr("no-such-scenario")));
+  EXPECT_THAT(error_of("campaign: x\nscenarios: [scenario-1]\ncontrollers: [{controller: nope}]\ndraws: {count: 1}\n"),
+              AllOf(HasSubstr(file + ":3:"), HasSubstr("field 'controllers[0].controller'"), HasSubstr("unknown controller")));
+  EXPECT_THAT(error_of("campaign: x\nscenarios: [scenario-1]\ncontrollers: [{controller: lqr}, {controller: lqr}]\ndraws: {count: 1}\n"),
+              HasSubstr("lqr"));
+  EXPECT_THAT(error_of("campaign: x\nscenarios: [scenario-1]\ncontrollers: [{controller: lqr}]\ndraws: {count: 0}\n"),
+              AllOf(HasSubstr(file + ":4:"), HasSubstr("field 'draws.count'")));
+  EXPECT_THAT(error_of("campaign: x\nscenarios: [scenario-1]\ncontrollers: [{controller: lqr}]\n"),
+              HasSubstr("field 'draws': missing"));
+  EXPECT_THAT(error_of("campaign: [unclosed\n"), HasSubstr(file + ":"));
+}
+
+TEST(CampaignFile, TheShippedCampaignsAreValid) {
+  const std::filesystem::path folder = THETAD_SOURCE_DIR "/scenarios/campaigns";
+  const Campaign paired = load_campaign(folder / "scenario-1-paired.yaml");
+  EXPECT_EQ(paired.run_count(), 3 * 200);
+  const Campaign envelope = load_campaign(folder / "envelope.yaml");
+  EXPECT_EQ(envelope.cells.size(), 36u);
+  EXPECT_EQ(envelope.run_count(), 36 * 20 * 2);
+  EXPECT_EQ(load_campaign(folder / "scenario-1-paired-fast.yaml").base_seed, paired.base_seed);
+  EXPECT_EQ(load_campaign(folder / "envelope-sdre.yaml").cells.size(), 9u);
+  const Campaign quick = load_campaign(folder / "envelope-quick.yaml");
+  ASSERT_EQ(quick.cells.size(), envelope.cells.size());
+  for (std::size_t i = 0; i < quick.cells.size(); ++i) {
+    FactorValues swept = quick.cells[i];
+    swept.erase(swept.begin());  // the fixed duration
+    EXPECT_EQ(swept, envelope.cells[i]) << i;
+  }
+  EXPECT_EQ(load_campaign(folder / "scenario-1-paired-sdre.yaml").controllers.size(), 3u);
+}
+
+}  // namespace
+}  // namespace thetad

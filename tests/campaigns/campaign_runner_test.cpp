@@ -1,0 +1,143 @@
+#include "campaigns/campaign_runner.hpp"
+
+#include <fstream>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "campaigns/campaign_merge.hpp"
+#include "campaigns/run_plan.hpp"
+#include "core/error.hpp"
+#include "tests/campaigns/campaign_testing.hpp"
+#include "tests/scratch_directory.hpp"
+
+namespace thetad {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+using testing::expect_same_runs;
+using testing::stored_records;
+
+// Two cells x two controllers x three draws: twelve short runs.
+const std::string kCampaign = testing::small_campaign("runner-test", 3, 11, "{grid: {uncertainty_scale: [0.5, 2]}}");
+
+class CampaignRunner : public ::testing::Test {
+ protected:
+  Campaign campaign(const std::string& text = kCampaign) const {
+    const fs::path file = scratch_.path() / "campaign.yaml";
+    std::ofstream(file) << text;
+    return load_campaign(file);
+  }
+  CampaignOptions options(const std::string& out, int jobs) const {
+    CampaignOptions o;
+    o.out = scratch_.path() / out;
+    o.jobs = jobs;
+    o.timing = false;
+    o.progress = Progress::Mode::quiet;
+    return o;
+  }
+  testing::ScratchDirectory scratch_{"campaign_runner_test"};
+};
+
+TEST_F(CampaignRunner, TheDatabaseIsTheSameForAnyNumberOfWorkersAndShards) {
+  const Campaign c = campaign();
+  const CampaignOutcome one = run_campaign(c, options("one", 1));
+  EXPECT_EQ(one.runs, 12);
+  EXPECT_EQ(one.flown, 12);
+  const std::vector<RunRecord> expected = stored_records(options("one", 1).out);
+  ASSERT_EQ(expected.size(), 12u);
+  // Paired draws: the controllers of one draw fly the same seed, the same parameter draw.
+  EXPECT_EQ(expected[0].seed, expected[1].seed);
+  EXPECT_EQ(expected[0].seed, draw_seed(11, 0));
+  EXPECT_EQ(expected[0].controller, "lqr");
+  EXPECT_EQ(expected[1].controller, "td");
+  EXPECT_EQ(expected[6].factors, (FactorValues{{"uncertainty_scale", 2.0}, {"duration", 0.2}}));
+  EXPECT_NE(expected[0].metrics[8], expected[6].metrics[8]);  // the cells differ in cost
+
+  run_campaign(c, options("two", 2));
+  expect_same_runs(expected, stored_records(options("two", 2).out));
+
+  for (int k = 1; k <= 3; ++k) {
+    CampaignOptions part = options("shard" + std::to_string(k), 2);
+    part.shard = Shard{k, 3};
+    EXPECT_EQ(run_campaign(c, part).runs, 4);
+  }
+  merge_shards({scratch_.path() / "shard2", scratch_.path() / "shard1", scratch_.path() / "shard3"},
+               scratch_.path() / "merged");
+  expect_same_runs(expected, stored_records(scratch_.path() / "merged"));
+  const CampaignStore merged(store_file(scratch_.path() / "merged"));
+  EXPECT_EQ(merged.meta("shard"), "1/1");
+  EXPECT_EQ(merged.meta("campaign_sha256"), c.sha256);
+}
+
+TEST_F(CampaignRunner, ResumeFliesOnlyWhatIsMissingAndRefusesAnotherCampaign) {
+  const Campaign c = campaign();
+  CampaignOptions first = options("resumed", 1);
+  first.shard = Shard{1, 2};
+  run_campaign(c, first);
+  first.resume = true;
+  EXPECT_EQ(run_campaign(c, first).flown, 0);  // complete: nothing to fly
+
+  CampaignOptions again = options("resumed", 1);
+  try {
+    run_campaign(c, again);
+    FAIL() << "an existing database was overwritten";
+  } catch (const Error& error) {
+    EXPECT_THAT(error.what(), HasSubstr("exists: pass --resume"));
+  }
+  again.resume = true;
+  again.shard = Shard{2, 2};
+  EXPECT_THROW(run_campaign(c, again), Error);  // another shard
+  again.shard = Shard{1, 2};
+  const Campaign other = campaign(kCampaign + "    # another campaign file\n");
+  try {
+    run_campaign(other, again);
+    FAIL() << "resumed another campaign";
+  } catch (const Error& error) {
+    EXPECT_THAT(error.what(), HasSubstr("holds another campaign"));
+  }
+}
+
+TEST_F(CampaignRunner, MergeRefusesShardsOfAnotherCampaignAMissingOrRepeatedShard) {
+  const Campaign c = campaign();
+  const Campaign other = campaign(kCampaign + "# another campaign\n");
+  CampaignOptions part = options("a1", 2);
+  part.shard = Shard{1, 2};
+  run_campaign(c, part);
+  part.out = scratch_.path() / "b2";
+  part.shard = Shard{2, 2};
+  run_campaign(other, part);
+  const auto merge_error = [&](const std::vector<fs::path>& shards) {
+    try {
+      merge_shards(shards, scratch_.path() / "merged");
+    } catch (const Error& error) {
+      return std::string(error.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_THAT(merge_error({scratch_.path() / "a1", scratch_.path() / "b2"}), HasSubstr("holds another campaign"));
+  EXPECT_THAT(merge_error({scratch_.path() / "a1"}), HasSubstr("shard 2/2 is missing"));
+  EXPECT_THAT(merge_error({scratch_.path() / "a1", scratch_.path() / "a1"}), HasSubstr("given twice"));
+  EXPECT_FALSE(fs::exists(store_file(scratch_.path() / "merged")));
+}
+
+TEST_F(CampaignRunner, ABadCellFailsBeforeAnythingFlies) {
+  const Campaign c = campaign(R"(campaign: bad-dt
+scenarios: [scenario-1]
+controllers: [{controller: lqr}]
+draws: {count: 2}
+sweep: {grid: {dt: [0.001, 0.0003]}}
+)");
+  try {
+    run_campaign(c, options("bad", 1));
+    FAIL() << "no error";
+  } catch (const Error& error) {
+    EXPECT_THAT(error.what(), HasSubstr("sweep cell 1 (dt=0.000300)"));
+    EXPECT_THAT(error.what(), HasSubstr("does not divide the controller period"));
+  }
+  EXPECT_FALSE(fs::exists(store_file(scratch_.path() / "bad")));
+}
+
+}  // namespace
+}  // namespace thetad
