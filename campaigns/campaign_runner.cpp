@@ -131,7 +131,7 @@ CampaignOutcome coordinate(const Campaign& campaign, const CampaignOptions& opti
       mpi->answer(request->rank, index);
     }
     store.write(batch);
-    for (const RunRecord& record : batch) progress.add(!record.completed);
+    for (const RunRecord& record : batch) progress.add(!record.completed());
     written += batch.size();
   }
   progress.finish();

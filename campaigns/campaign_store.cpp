@@ -221,7 +221,7 @@ void CampaignStore::write(const std::vector<RunRecord>& records) {
           insert.bind(i++, given->second);
         }
       }
-      insert.bind(i++, std::string(r.completed ? "completed" : "diverged"));
+      insert.bind(i++, r.status);
       insert.bind(i++, r.reason);
       insert.bind(i++, r.end_time);
       insert.bind(i++, r.controller_samples);
@@ -256,7 +256,7 @@ std::vector<RunRecord> CampaignStore::records() const {
       if (!select.is_null(i)) r.factors.emplace_back(std::string(factor.name), select.number(i));
       ++i;
     }
-    r.completed = select.text(i++) == "completed";
+    r.status = select.text(i++);
     r.reason = select.text(i++);
     r.end_time = select.number(i++);
     r.controller_samples = select.integer(i++);

@@ -25,7 +25,7 @@ RunRecord make_record(const PlannedRun& run, const FactorValues& factors, const 
   record.controller = result.spec.label;
   record.seed = run.seed;
   record.factors = factors;
-  record.completed = result.completed();
+  record.status = sim::status_name(s.status);
   record.reason = s.reason;
   record.end_time = s.end_time;
   record.controller_samples = s.controller_samples;
@@ -45,7 +45,7 @@ nlohmann::json to_json(const RunRecord& r) {
   for (const auto& [name, value] : r.factors) factors.push_back({name, value});
   return {{"index", r.index},          {"cell", r.cell},     {"draw", r.draw},
           {"scenario", r.scenario},    {"controller", r.controller}, {"seed", r.seed},
-          {"factors", factors},        {"completed", r.completed},   {"reason", r.reason},
+          {"factors", factors},        {"status", r.status},   {"reason", r.reason},
           {"end_time", r.end_time},    {"samples", r.controller_samples}, {"metrics", r.metrics}};
 }
 
@@ -58,7 +58,7 @@ RunRecord record_from_json(const nlohmann::json& j) {
   r.controller = j.at("controller").get<std::string>();
   r.seed = j.at("seed").get<std::uint64_t>();
   for (const auto& factor : j.at("factors")) r.factors.emplace_back(factor.at(0).get<std::string>(), factor.at(1).get<double>());
-  r.completed = j.at("completed").get<bool>();
+  r.status = j.at("status").get<std::string>();
   r.reason = j.at("reason").get<std::string>();
   r.end_time = j.at("end_time").get<double>();
   r.controller_samples = j.at("samples").get<std::int64_t>();

@@ -31,8 +31,9 @@ struct RunRecord {
   std::string controller;   // the spec's label
   std::uint64_t seed = 0;
   FactorValues factors;     // the cell's factors
-  bool completed = false;
-  std::string reason;       // why it diverged; empty when completed
+  std::string status;       // sim::status_name(): completed, diverged or failed (the controller threw or gave NaN)
+  std::string reason;       // why it diverged or failed; empty when completed
+  bool completed() const { return status == "completed"; }
   double end_time = 0.0;    // s
   std::int64_t controller_samples = 0;
   std::vector<double> metrics;  // metric_columns() order

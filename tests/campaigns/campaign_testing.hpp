@@ -39,7 +39,7 @@ inline void expect_same_runs(const std::vector<RunRecord>& expected, const std::
     EXPECT_EQ(a.controller, b.controller);
     EXPECT_EQ(a.seed, b.seed);
     EXPECT_EQ(a.factors, b.factors);
-    EXPECT_EQ(a.completed, b.completed);
+    EXPECT_EQ(a.status, b.status);
     EXPECT_EQ(a.reason, b.reason);
     EXPECT_EQ(a.end_time, b.end_time);
     EXPECT_EQ(a.controller_samples, b.controller_samples);
