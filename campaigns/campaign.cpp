@@ -5,8 +5,9 @@
 
 #include "experiment/scenario_files.hpp"
 #include "experiment/sha256.hpp"
-#include "experiment/text_file.hpp"
+#include "core/text_file.hpp"
 #include "settings/settings.hpp"
+#include "settings/yaml_document.hpp"
 
 namespace thetad {
 
@@ -136,13 +137,8 @@ std::vector<FactorValues> read_sweep(const YAML::Node& node, const FactorValues&
 }  // namespace
 
 Campaign parse_campaign(const std::string& text, const fs::path& file) {
+  const YAML::Node node = parse_yaml(text, file.string());
   return with_settings_source(file.string(), [&] {
-    YAML::Node node;
-    try {
-      node = YAML::Load(text);
-    } catch (const YAML::Exception& error) {
-      throw SettingsError("(file)", error.msg, error.mark);
-    }
     if (!node.IsMap()) throw SettingsError("(file)", "expected a map (docs/campaigns.md)", node.Mark());
     const Settings root(node);
     root.allow_only({"campaign", "scenarios", "controllers", "draws", "fixed", "sweep", "summary_only"});

@@ -148,7 +148,7 @@ CampaignOutcome serve(const Campaign& campaign, const CampaignOptions& options, 
     while (const auto index = mpi.request(finished)) {
       finished = worker.fly(*index);
       ++outcome.flown;
-      if (!finished->completed) ++outcome.diverged;
+      if (!finished->completed()) ++outcome.diverged;
     }
   } catch (const std::exception& error) {
     mpi.report_error(error.what());

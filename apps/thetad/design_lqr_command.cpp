@@ -11,6 +11,7 @@
 #include "controllers/lqr_scheduled.hpp"
 #include "core/error.hpp"
 #include "settings/settings.hpp"
+#include "settings/yaml_document.hpp"
 #include "scenarios/scenario.hpp"
 
 namespace thetad::app {
@@ -30,13 +31,8 @@ CLI::App* add_design_lqr_command(CLI::App& app, DesignLqrArguments& arguments) {
 int run_design_lqr(const DesignLqrArguments& arguments) {
   LqrScheduleGrid grid = LqrScheduleGrid::envelope();
   if (!arguments.grid.empty()) {
-    grid = with_settings_source(arguments.grid.string(), [&] {
-      try {
-        return read_lqr_grid(Settings(YAML::LoadFile(arguments.grid.string())));
-      } catch (const YAML::Exception& error) {
-        throw Error(arguments.grid.string() + ":" + std::to_string(error.mark.line + 1) + ": invalid YAML: " + error.msg);
-      }
-    });
+    const YAML::Node root = load_yaml_file(arguments.grid);
+    grid = with_settings_source(arguments.grid.string(), [&] { return read_lqr_grid(Settings(root)); });
   }
   const heli::ModelOptions options =
       arguments.scenario.empty() ? heli::ModelOptions::resolved() : load_scenario(arguments.scenario).model_options;

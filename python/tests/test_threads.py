@@ -8,12 +8,13 @@ import thetad
 
 def test_python_runs_while_a_flight_flies():
     # Whatever the host's load: with the GIL held by the flight, this thread could not count at
-    # all until the flight ended.
+    # all until the flight ended. The flight lasts long enough (30 s simulated, ~0.7 s on an idle
+    # core) for 1000 counts with the GIL free.
     flight_done = threading.Event()
     counted_while_flying = 0
 
     def long_flight():
-        thetad.run("scenario-1", "theta-d", duration=3.0, summary_only=True, timing=False)
+        thetad.run("scenario-1", "theta-d", duration=30.0, summary_only=True, timing=False)
         flight_done.set()
 
     flying = threading.Thread(target=long_flight)
