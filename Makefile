@@ -13,7 +13,7 @@ endif
 BENCH_DIR ?= build-bench
 OUT ?= out
 
-.PHONY: all deps build test demo bench clean
+.PHONY: all deps build test demo bench fuzz clean
 
 all: build
 
@@ -41,5 +41,20 @@ bench: deps
 	cmake --build $(BENCH_DIR) -j $(JOBS)
 	bash bench/run.sh $(BENCH_DIR) $(OUT)/bench
 
+# libFuzzer targets (Clang, ASan, UBSan) of the input readers, each run FUZZ_SECONDS from the seed
+# corpus; new inputs go to build-fuzz/corpus, crashes to build-fuzz/findings (docs/reliability.md).
+FUZZ_DIR ?= build-fuzz
+FUZZ_SECONDS ?= 60
+fuzz:
+	@bash scripts/install-deps.sh clang libclang-rt-14-dev
+	CC=clang CXX=clang++ cmake -S . -B $(FUZZ_DIR) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTHETAD_FUZZ=ON \
+	  -DTHETAD_BUILD_TESTS=OFF -DTHETAD_BUILD_BENCH=OFF -DTHETAD_BUILD_PYTHON=OFF
+	cmake --build $(FUZZ_DIR) -j $(JOBS) --target fuzz_scenario fuzz_settings fuzz_controllers
+	for target in scenario settings controllers; do \
+	  mkdir -p $(FUZZ_DIR)/corpus/$$target $(FUZZ_DIR)/findings/$$target && \
+	  $(FUZZ_DIR)/fuzz/fuzz_$$target -max_total_time=$(FUZZ_SECONDS) -timeout=10 -rss_limit_mb=4096 \
+	    -artifact_prefix=$(FUZZ_DIR)/findings/$$target/ $(FUZZ_DIR)/corpus/$$target fuzz/corpus/$$target || exit 1; \
+	done
+
 clean:
-	rm -rf build build-sanitize $(BENCH_DIR)
+	rm -rf build build-sanitize $(BENCH_DIR) $(FUZZ_DIR)

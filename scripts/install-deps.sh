@@ -18,6 +18,9 @@ packages=(
   libsqlite3-dev libopenmpi-dev openmpi-bin
 )
 
+# Extra packages for one target only (make fuzz: Clang and its libFuzzer runtime).
+packages+=("$@")
+
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
