@@ -5,55 +5,50 @@
 - for a 2-D sweep, a heat map of completion per controller: the flight envelope;
 - violins of the paired per-draw relative differences between controllers.
 
-The colours and line styles are local to this file until the shared plotting style of the figures
-module (scripts/thetad_plots/, issue 19) lands; then STYLE gives way to it.
+Every controller has the look it has in every thetad figure (scripts/thetad_plots/style.py).
 """
 
 import itertools
 import os
 
-import matplotlib
+import matplotlib.pyplot as plt
+import numpy as np
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+from thetad_plots import style
 
-# Okabe & Ito's colour-blind-safe palette, one line style per controller as well.
-PALETTE = ["#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9", "#F0E442", "#000000"]
-LINES = ["-", "--", "-.", ":"]
-
-
-def style(index):
-    return {"color": PALETTE[index % len(PALETTE)], "linestyle": LINES[index % len(LINES)]}
+style.apply()
 
 
 def save(figure, out, name):
+    """Writes the PNG under a temporary name, then renames it: a reader never sees half a figure."""
     path = os.path.join(out, name)
-    figure.savefig(path + ".partial.png", dpi=120, bbox_inches="tight")
+    style.save(figure, path + ".partial", ["png"])
     os.replace(path + ".partial.png", path)
-    plt.close(figure)
     return name
 
 
 def cdf(runs, controllers, column, label, out, name):
-    figure, axes = plt.subplots(figsize=(6.4, 4.0))
+    figure, axes = plt.subplots(figsize=style.size(style.COLUMN, 0.75))
     completed = runs[runs.status == "completed"]
-    for i, controller in enumerate(controllers):
+    for controller in controllers:
         values = np.sort(completed[completed.controller == controller][column].to_numpy())
         if values.size:
-            axes.step(values, np.arange(1, values.size + 1) / values.size, where="post", label=controller, **style(i))
+            axes.step(values, np.arange(1, values.size + 1) / values.size, where="post",
+                      **style.line(controller, controllers))
     axes.set_xlabel(label)
     axes.set_ylabel("fraction of completed runs")
     axes.set_xscale("log")
-    axes.grid(True, which="both", alpha=0.3)
+    axes.grid(True, which="both")
     axes.legend()
     return save(figure, out, name)
 
 
 def completion(per_controller, controllers, out):
     cells = sorted({(r["cell"], r["cell_label"]) for r in per_controller})
-    figure, axes = plt.subplots(figsize=(max(6.4, 0.35 * len(cells) * len(controllers)), 4.0))
+    wide = len(cells) * len(controllers) > 8
+    figure, axes = plt.subplots(figsize=style.size(style.PAGE if wide else style.COLUMN, 0.45 if wide else 0.75))
     width = 0.8 / len(controllers)
+    looks = style.looks(controllers)
     for i, controller in enumerate(controllers):
         rows = [r for r in per_controller if r["controller"] == controller]
         x = np.array([r["cell"] for r in rows]) + (i - (len(controllers) - 1) / 2) * width
@@ -61,13 +56,13 @@ def completion(per_controller, controllers, out):
         # Clipped at 0: at 100 % the interval's upper end can fall an ulp below the rate.
         low = np.maximum(rate - np.array([r["completion_wilson95"][0] for r in rows]), 0.0)
         high = np.maximum(np.array([r["completion_wilson95"][1] for r in rows]) - rate, 0.0)
-        axes.errorbar(x, 100 * rate, yerr=100 * np.vstack([low, high]), fmt="o", capsize=3, label=controller,
-                      color=style(i)["color"])
+        axes.errorbar(x, 100 * rate, yerr=100 * np.vstack([low, high]), fmt=looks[controller].marker, capsize=2,
+                      markersize=3.5, label=controller, color=looks[controller].colour)
     axes.set_xticks([c for c, _ in cells])
-    axes.set_xticklabels([label for _, label in cells], rotation=60, ha="right", fontsize=7)
+    axes.set_xticklabels([label for _, label in cells], rotation=60, ha="right", fontsize=6)
     axes.set_ylabel("completed runs [%] (Wilson 95 %)")
     axes.set_ylim(-5, 105)
-    axes.grid(True, axis="y", alpha=0.3)
+    axes.grid(True, axis="y")
     axes.legend()
     return save(figure, out, "completion.png")
 
@@ -82,11 +77,11 @@ def envelope(per_controller, controllers, swept, out):
         grid = np.full((len(ys), len(xs)), np.nan)
         for r in rows:
             grid[ys.index(r["factors"][y_name]), xs.index(r["factors"][x_name])] = 100 * r["completion_rate"]
-        figure, axes = plt.subplots(figsize=(5.6, 4.4))
+        figure, axes = plt.subplots(figsize=style.size(style.COLUMN, 0.8))
         image = axes.imshow(grid, origin="lower", cmap="viridis", vmin=0, vmax=100, aspect="auto")
         for (row, col), value in np.ndenumerate(grid):
             if np.isfinite(value):
-                axes.text(col, row, f"{value:.0f}", ha="center", va="center", fontsize=7,
+                axes.text(col, row, f"{value:.0f}", ha="center", va="center", fontsize=6,
                           color="white" if value < 60 else "black")
         axes.set_xticks(range(len(xs)), [f"{v:g}" for v in xs])
         axes.set_yticks(range(len(ys)), [f"{v:g}" for v in ys])
@@ -112,12 +107,12 @@ def violins(runs, controllers, out):
                 labels.append(f"{a} vs {b}\n{column}")
     if not data:
         return []
-    figure, axes = plt.subplots(figsize=(max(6.4, 1.6 * len(data)), 4.0))
+    figure, axes = plt.subplots(figsize=style.size(style.PAGE if len(data) > 4 else style.COLUMN, 0.45 if len(data) > 4 else 0.75))
     axes.violinplot(data, showmedians=True)
     axes.axhline(0.0, color="black", linewidth=0.8)
-    axes.set_xticks(range(1, len(data) + 1), labels, fontsize=7)
+    axes.set_xticks(range(1, len(data) + 1), labels, fontsize=6)
     axes.set_ylabel("paired difference a/b - 1 [%]")
-    axes.grid(True, axis="y", alpha=0.3)
+    axes.grid(True, axis="y")
     return [save(figure, out, "paired_violins.png")]
 
 
