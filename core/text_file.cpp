@@ -1,6 +1,7 @@
 #include "core/text_file.hpp"
 
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -72,6 +73,23 @@ std::string read_text_file(const fs::path& file) {
   text << in.rdbuf();
   if (in.bad()) throw Error("cannot read " + file.string() + ": read error");
   return text.str();
+}
+
+std::string escaped_utf8(const std::string& text) {
+  std::string escaped;
+  for (std::size_t i = 0; i < text.size();) {
+    const std::size_t length = utf8_sequence(text, i);
+    if (length > 0) {
+      escaped.append(text, i, length);
+      i += length;
+      continue;
+    }
+    char hex[8];
+    std::snprintf(hex, sizeof hex, "\\x%02X", static_cast<unsigned char>(text[i]));
+    escaped.append(hex);
+    ++i;
+  }
+  return escaped;
 }
 
 std::size_t invalid_utf8(const std::string& text) {

@@ -22,4 +22,8 @@ std::string read_text_file(const std::filesystem::path& file);
 // Names and labels end up in JSON results and file names, which accept nothing else.
 std::size_t invalid_utf8(const std::string& text);
 
+// `text` with every byte that is not part of valid UTF-8 written as \xHH: for quoting what a
+// library says about bad input (its messages may carry the raw bytes) in a message of ours.
+std::string escaped_utf8(const std::string& text);
+
 }  // namespace thetad

@@ -1,6 +1,7 @@
 #include "settings/yaml_document.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <sstream>
 #include <vector>
 
@@ -66,12 +67,25 @@ class DocumentCheck {
 YAML::Node parse_yaml(const std::string& text, const std::string& source) {
   if (const std::size_t bad = invalid_utf8(text); bad != std::string::npos)
     fail(source, mark_of(text, bad), "not valid UTF-8 (byte " + std::to_string(bad) + ")");
+  // YAML's printable set: no C0 control but tab, line feed and carriage return, no DEL. A NUL
+  // would also make yaml-cpp read the text as UTF-16 or UTF-32.
+  const auto control = std::find_if(text.begin(), text.end(), [](char c) {
+    const auto byte = static_cast<unsigned char>(c);
+    return (byte < 0x20 && byte != '\t' && byte != '\n' && byte != '\r') || byte == 0x7F;
+  });
+  if (control != text.end()) {
+    const auto at = static_cast<std::size_t>(control - text.begin());
+    char code[8];
+    std::snprintf(code, sizeof code, "0x%02X", static_cast<unsigned char>(*control));
+    fail(source, mark_of(text, at), std::string("control character ") + code + " (byte " + std::to_string(at) +
+                                        "): not allowed in YAML");
+  }
   YAML::Node root;
   try {
     root = YAML::Load(text);
   } catch (const YAML::Exception& error) {
     // yaml-cpp's what() carries 0-based positions; print ours, 1-based.
-    fail(source, error.mark, "invalid YAML: " + error.msg);
+    fail(source, error.mark, "invalid YAML: " + escaped_utf8(error.msg));
   }
   DocumentCheck(source).visit(root);
   return root;
