@@ -46,11 +46,13 @@ const ControllerRegistration registration(
                            "fixed_point_tolerance", "Q", "R"});
       const DesignDefaults& defaults = context.defaults;
       ThetaDSettings s;
-      s.terms = settings.integer(theta_d_keys::terms, s.terms, 1);
+      // Bounded: each term is one more Lyapunov solve per pass and two more settings entries, so a
+      // huge N (a typo, a fuzzer's 1005501) would hang the design; the paper uses 3.
+      s.terms = settings.integer(theta_d_keys::terms, s.terms, 1, 20);
       const Eigen::VectorXd ones = Eigen::VectorXd::Ones(s.terms - 1);
       s.k = settings.vector(theta_d_keys::k, ones, s.terms - 1);
       s.l = settings.vector(theta_d_keys::l, ones, s.terms - 1, 0.0);
-      s.fixed_point_iterations = settings.integer("fixed_point_iterations", s.fixed_point_iterations, 1);
+      s.fixed_point_iterations = settings.integer("fixed_point_iterations", s.fixed_point_iterations, 1, 100);
       s.fixed_point_tolerance = settings.number("fixed_point_tolerance", s.fixed_point_tolerance, 0.0);
       s.Q = settings.diagonal_weight("Q", defaults.state_weights, Settings::Weight::positive_semidefinite);
       s.R = settings.diagonal_weight("R", defaults.input_weights, Settings::Weight::positive_definite);
