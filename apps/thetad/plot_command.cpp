@@ -6,17 +6,15 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
-#include <sstream>
 
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "core/text_file.hpp"
 #include "core/sim/simulator.hpp"
 #include "experiment/run_files.hpp"
 #include "experiment/scenario_files.hpp"
@@ -32,14 +30,6 @@ using nlohmann::ordered_json;
 fs::path directory_path(const fs::path& directory) {
   const fs::path path = fs::absolute(directory).lexically_normal();
   return path.has_filename() ? path : path.parent_path();
-}
-
-std::string read_text(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw Error("cannot read " + file.string() + ": " + std::strerror(errno));
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
 }
 
 // The runs of a folder, each checked against its result file (read_result_folder); every run must
@@ -140,7 +130,7 @@ int run_plot(const PlotArguments& arguments) {
 
   std::fprintf(stderr, "plot: drawing %zu run(s) from %s\n", runs.size(), arguments.in.c_str());
   const int status = run_python_script(script, {manifest_file.string()}, log);
-  const std::string messages = trimmed(read_text(log));
+  const std::string messages = trimmed(read_text_file(log));
   if (status != 0) {
     throw Error(script.filename().string() + " failed (exit status " + std::to_string(status) + ")" +
                 (messages.empty() ? std::string() : ": " + messages));
