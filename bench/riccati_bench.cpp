@@ -33,8 +33,11 @@ struct Problem : thetad::bench::CareProblem {
   MatrixXd P_warm;  // the solution for A with every entry perturbed by 1e-3 (relative)
   MatrixXd Ac;      // A − BK: the constant coefficient of the θ–D Lyapunov equations
   MatrixXd W;       // a symmetric right side shaped like θ–D's W1 = −(P Ã + Ã'P)
+  // Up to kLyapunovRowsUpTo states only: its construction is O(n⁶), seconds at n = 60.
   std::shared_ptr<const thetad::ConstantLyapunovSolver> lyapunov;
 };
+
+constexpr Index kLyapunovRowsUpTo = 36;
 
 using thetad::bench::random_normal;
 
@@ -54,7 +57,7 @@ Problem complete(thetad::bench::CareProblem care_problem, std::mt19937_64& rng) 
   p.P_warm = thetad::solve_care(A_near, p.B, p.Q, p.R).P;
   const MatrixXd E = random_normal(p.A.rows(), p.A.cols(), rng);
   p.W = symmetric_part(-(p.P * E + E.transpose() * p.P));
-  p.lyapunov = std::make_shared<const thetad::ConstantLyapunovSolver>(p.Ac);
+  if (p.A.rows() <= kLyapunovRowsUpTo) p.lyapunov = std::make_shared<const thetad::ConstantLyapunovSolver>(p.Ac);
   return p;
 }
 
@@ -85,6 +88,19 @@ void bm_solve_care(benchmark::State& state, const Problem& p) {
   }
   state.counters["residual"] = thetad::bench::relative_residual(p, result.P);
   state.counters["sign_iterations"] = result.sign_iterations;
+}
+
+// The same solve through a CareSolver built once, as the SDRE's cold step uses it: no allocation,
+// Q and R checked once.
+void bm_care_solver(benchmark::State& state, const Problem& p) {
+  thetad::CareSolver solver(p.Q, p.R);
+  const thetad::CareResult* result = nullptr;
+  for (auto _ : state) {
+    result = &solver.solve(p.A, p.B);
+    benchmark::DoNotOptimize(result->P.data());
+  }
+  state.counters["residual"] = thetad::bench::relative_residual(p, result->P);
+  state.counters["sign_iterations"] = result->sign_iterations;
 }
 
 void bm_solve_care_newton(benchmark::State& state, const Problem& p) {
@@ -236,15 +252,17 @@ int main(int argc, char** argv) {
   problems.push_back(paper_problem());
   for (const auto& [n, m] : {std::pair<Index, Index>{6, 2}, {12, 4}, {18, 5}, {36, 10}})
     problems.push_back(random_problem(n, m));
+  // The sweep of the solve_care target (issue 16): n = 10 … 60, m = n/3.
+  for (const Index n : {10, 20, 30, 40, 50, 60}) problems.push_back(random_problem(n, n / 3));
 
   using Function = void (*)(benchmark::State&, const Problem&);
   const std::pair<const char*, Function> every_size[] = {
       {"solve_care", bm_solve_care<thetad::CareMethod::automatic>},
+      {"care_solver", bm_care_solver},
       {"solve_care_schur", bm_solve_care<thetad::CareMethod::schur>},
       {"solve_care_newton_warm", bm_solve_care_newton},
       {"newton_kleinman_solver_warm", bm_newton_kleinman_solver},
       {"sb02md", bm_sb02md},
-      {"constant_lyapunov_solve", bm_constant_lyapunov},
       {"solve_lyapunov", bm_solve_lyapunov},
   };
   // The n² Kronecker operator is 1296×1296 at n = 36: its setup alone would dominate a run.
@@ -256,6 +274,9 @@ int main(int argc, char** argv) {
   for (const Problem& p : problems) {
     for (const auto& [name, function] : every_size)
       benchmark::RegisterBenchmark((std::string(name) + "/" + p.name).c_str(), function, p)
+          ->Unit(benchmark::kMicrosecond);
+    if (p.lyapunov)
+      benchmark::RegisterBenchmark(("constant_lyapunov_solve/" + p.name).c_str(), bm_constant_lyapunov, p)
           ->Unit(benchmark::kMicrosecond);
     if (p.A.rows() <= 18)
       for (const auto& [name, function] : up_to_18)

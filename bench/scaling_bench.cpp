@@ -1,7 +1,8 @@
 // How the per-step cost of the controllers grows with the state dimension, on synthetic SDC plants
-// of n = 6, 12, 18, 36, 72 states and m = n/3 inputs (thetad::RandomSdcPlant: F(x) = A + x1 C +
-// x2² D, B(x) = G + x1 E with dense random C, D, E, so every row is nonlinear and every coefficient
-// of F and B varies; (F, B) is stabilizable with probability one at every state).
+// of n = 6, 12, 18, 24, 36, 48, 60, 72 states and m = n/3 inputs (thetad::RandomSdcPlant:
+// F(x) = A + x1 C + x2² D, B(x) = G + x1 E with dense random C, D, E, so every row is nonlinear
+// and every coefficient of F and B varies; (F, B) is stabilizable with probability one at every
+// state).
 // bench/report.py fits the log-log slope of the medians against n.
 //
 // The rows: every registered controller that flies a plant other than the helicopter, built by
@@ -143,7 +144,7 @@ void register_benchmarks() {
   rows.emplace_back("lqr", fixed_gain);
   for (const auto& [row, make] : rows) {
     auto* benchmark = benchmark::RegisterBenchmark(("control_step/" + row).c_str(), control_step, row, make);
-    for (const int n : {6, 12, 18, 36, 72}) benchmark->Arg(n);
+    for (const int n : {6, 12, 18, 24, 36, 48, 60, 72}) benchmark->Arg(n);
     benchmark->ArgName("n")->Unit(benchmark::kMicrosecond);
   }
 }

@@ -39,6 +39,7 @@ SdreController::SdreController(const SdcPlant& model, SdreSettings settings)
   }
   R_inverse_ = llt.solve(Eigen::MatrixXd::Identity(m, m));
   newton_.emplace(settings_.Q, settings_.R, settings_.newton_tolerance, settings_.newton_max_iterations);
+  cold_.emplace(settings_.Q, settings_.R);
 
   F_.setZero(n, n);
   B_.setZero(n, m);
@@ -81,7 +82,7 @@ void SdreController::update_value_matrix(double t) {
         ++fallback_count_;
       }
     }
-    P_ = solve_care(F_, B_, settings_.Q, settings_.R).P;
+    P_ = cold_->solve(F_, B_).P;
     have_P_ = true;
   } catch (const Error& error) {
     if (!have_P_) {

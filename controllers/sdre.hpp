@@ -8,9 +8,9 @@
 // speed follows T_mr), u is the fixed point of u -> F(x; u), B(x; u) -> u' of spec §7.6, started
 // from the previously applied input: every pass solves one CARE.
 //
-// The warm step allocates nothing: Newton–Kleinman works in a NewtonKleinmanSolver sized at
-// construction. A cold solve (the first sample, cold mode, a warm step that failed) allocates
-// (solve_care returns a CareResult of fresh matrices).
+// A step allocates nothing in either mode: Newton–Kleinman works in a NewtonKleinmanSolver and the
+// cold solve (the first sample, cold mode, a warm step that failed) in a CareSolver, both sized at
+// construction.
 
 #include <memory>
 #include <optional>
@@ -28,8 +28,8 @@ namespace thetad {
 
 struct SdreSettings {
   enum class Mode {
-    cold,  // solve_care (matrix sign function, Laub–Schur fallback) at every pass
-    warm,  // Newton–Kleinman from the last P (solve_care_newton), solve_care when that fails
+    cold,  // CareSolver (matrix sign function, Laub–Schur fallback) at every pass
+    warm,  // Newton–Kleinman from the last P (NewtonKleinmanSolver), the cold solve when that fails
   };
   Mode mode = Mode::warm;
   // Q n×n symmetric positive semi-definite, R m×m symmetric positive definite (Eq. 37).
@@ -92,6 +92,7 @@ class SdreController final : public Controller {
   SdreSettings settings_;
   Eigen::MatrixXd R_inverse_;
   std::optional<NewtonKleinmanSolver> newton_;  // the warm mode's, set in the constructor
+  std::optional<CareSolver> cold_;              // both modes', set in the constructor
 
   // Per-step buffers, sized in the constructor.
   Eigen::MatrixXd F_, B_, P_;

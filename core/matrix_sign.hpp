@@ -18,10 +18,27 @@ struct MatrixSign {
   int iterations;  // matrix inversions
 };
 
-// Empty when an iterate is singular to working precision (Z has an eigenvalue at, or the
-// iteration met one on, the imaginary axis) or the iteration has not converged after
-// max_iterations inversions, which happens when eigenvalues lie close to the axis: the
-// caller then needs an eigenvalue method to say why.
-std::optional<MatrixSign> matrix_sign(Eigen::MatrixXd Z, int max_iterations);
+// The iteration for one size N, with every buffer sized at construction: compute() allocates
+// nothing (CareSolver's cold solve in a control step). Not thread-safe per object.
+class MatrixSignSolver {
+ public:
+  explicit MatrixSignSolver(Eigen::Index N);
+
+  // sign(Z) into sign(), and the inversions it took. Empty when an iterate is singular to working
+  // precision (Z has an eigenvalue at, or the iteration met one on, the imaginary axis) or the
+  // iteration has not converged after max_iterations inversions, which happens when eigenvalues
+  // lie close to the axis: the caller then needs an eigenvalue method to say why.
+  std::optional<int> compute(const Eigen::Ref<const Eigen::MatrixXd>& Z, int max_iterations);
+  const Eigen::MatrixXd& sign() const { return Z_; }
+
+ private:
+  void invert_factored();
+
+  Eigen::MatrixXd Z_, next_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
+};
+
+// One sign function, for a one-off matrix: MatrixSignSolver(Z.rows()).compute(Z, max_iterations).
+std::optional<MatrixSign> matrix_sign(const Eigen::Ref<const Eigen::MatrixXd>& Z, int max_iterations);
 
 }  // namespace thetad

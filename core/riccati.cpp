@@ -5,6 +5,10 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Eigenvalues>
 
 #include "core/care_diagnosis.hpp"
 #include "core/care_weights.hpp"
@@ -27,76 +31,10 @@ using care::Weights;
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 
-// What a solver already knows about its P when it finishes: W·P always; the residual and the
-// closed-loop spectrum when it computed them on the way (null: compute them here).
-struct Solution {
-  MatrixXd P;  // symmetric
-  MatrixXd WP;
-  const MatrixXd* residual = nullptr;
-  const Eigen::VectorXcd* closed_loop_eigenvalues = nullptr;
-};
-
-// Fills K, the closed-loop spectrum and the residual, and refuses a P that does not stabilize:
-// the last line of defence against returning garbage.
-CareResult finish(const MatrixRef& A, const MatrixRef& B, const Weights& w, Solution s, int iterations) {
-  // A basis of the stable subspace that is not a graph can slip past the rcond test (or come out
-  // of a balancing that had nothing to balance) as Inf/NaN entries: never return those.
-  if (!s.P.allFinite() || !s.WP.allFinite())
-    fail("no stabilizing solution: the computed P has non-finite entries" + std::string(kStabilizabilityHint));
-  CareResult result;
-  result.K = w.L.transpose().triangularView<Eigen::Upper>().solve(s.WP);
-  if (s.closed_loop_eigenvalues) {
-    result.closed_loop_eigenvalues = *s.closed_loop_eigenvalues;
-  } else {
-    MatrixXd Ac = A;
-    Ac.noalias() -= B * result.K;
-    result.closed_loop_eigenvalues = Eigen::EigenSolver<MatrixXd>(Ac, false).eigenvalues();
-  }
-  const double max_real = result.closed_loop_eigenvalues.real().maxCoeff();
-  if (!(max_real < 0.0))
-    fail("the solution is not stabilizing: A − BK has an eigenvalue with Re λ = " + num(max_real) +
-         kStabilizabilityHint);
-  if (s.residual) {
-    result.relative_residual = care::relative_to_q(s.residual->norm(), w);
-  } else {
-    MatrixXd Res(s.P.rows(), s.P.cols());
-    care::care_residual(A, w, s.P, s.WP, Res);
-    result.relative_residual = care::relative_to_q(Res.norm(), w);
-  }
-  result.P = std::move(s.P);
-  result.iterations = iterations;
-  return result;
-}
+static_assert(sizeof(lapack_int) == sizeof(int) && sizeof(lapack_logical) == sizeof(int),
+              "CareSolver stores LAPACK integers as int");
 
 lapack_logical is_stable(const double* re, const double* /*im*/) { return *re < 0.0; }
-
-// H = [A, −G; −Q, −A'].
-MatrixXd hamiltonian(const MatrixRef& A, const Weights& w) {
-  const Index n = A.rows();
-  MatrixXd H(2 * n, 2 * n);
-  H.topLeftCorner(n, n) = A;
-  H.topRightCorner(n, n).noalias() = -w.W.transpose() * w.W;
-  H.bottomLeftCorner(n, n) = -w.Q;
-  H.bottomRightCorner(n, n) = -A.transpose();
-  return H;
-}
-
-// A P with everything finish() and the refinement need about it.
-struct Candidate {
-  MatrixXd P;
-  MatrixXd WP;
-  MatrixXd Res;
-  double eta;  // normwise backward error, see evaluate()
-};
-
-// η: care::normwise_residual.
-Candidate evaluate(const MatrixRef& A, const Weights& w, double g_norm, MatrixXd P) {
-  Candidate c{std::move(P), {}, MatrixXd(A.rows(), A.cols()), 0.0};
-  c.WP.noalias() = w.W * c.P;
-  care::care_residual(A, w, c.P, c.WP, c.Res);
-  c.eta = care::normwise_residual(c.Res.norm(), w.Q.norm(), A.norm(), g_norm, c.P.norm());
-  return c;
-}
 
 // Newton refinement only when a direct solution is not backward stable. Measured: η is at
 // rounding level on the helicopter plant, CAREX 1.x–4.1 and random systems, and one Newton step
@@ -105,59 +43,98 @@ Candidate evaluate(const MatrixRef& A, const Weights& w, double g_norm, MatrixXd
 // from 9e-4 to 1e-12.
 constexpr double kRefineAbove = 1e-12;
 
-// Returns the refinement steps taken; c is replaced only by better candidates.
-int refine(const MatrixRef& A, const Weights& w, double g_norm, Candidate& c) {
-  constexpr int kMaxRefinements = 4;
-  int refinements = 0;
-  while (c.eta > kRefineAbove && refinements < kMaxRefinements) {
-    MatrixXd Ak = A;
-    Ak.noalias() -= w.W.transpose() * c.WP;
-    MatrixXd refined;
-    try {
-      refined = c.P + solve_lyapunov(Ak, c.Res);
-    } catch (const Error&) {
-      break;  // A − GP is not Hurwitz: finish() reports that with the eigenvalue
-    }
-    Candidate next = evaluate(A, w, g_norm, 0.5 * (refined + refined.transpose()));
-    if (!(next.eta < c.eta)) break;
-    c = std::move(next);
-    ++refinements;
-  }
-  return refinements;
-}
+// Scaled Newton needs 8 inversions on the paper's problem and 9–13 on random ones of its size;
+// 40 is reached only near the imaginary axis, where the Schur method is the one to trust.
+constexpr int kSignIterations = 40;
+
+// A P with everything finish() and the refinement need about it.
+struct Candidate {
+  MatrixXd P;  // symmetric
+  MatrixXd WP;
+  MatrixXd Res;
+  double eta = 0.0;  // normwise backward error, see evaluate()
+};
+
+}  // namespace
 
 // Both direct methods work on a diagonally scaled H_s = D⁻¹ H D, D = diag(d); a basis of the
 // stable subspace of H is D times one of H_s's, so [I; P_s] for H_s gives P = D2 P_s D1⁻¹.
-struct ScaledHamiltonian {
-  MatrixXd H;  // D⁻¹ H D
-  Eigen::VectorXd d;
+struct CareSolver::Workspace {
+  Workspace(const MatrixRef& Q, const MatrixRef& R, CareMethod method);
 
-  MatrixXd unscale(const MatrixXd& P_s) const {
-    const Index n = P_s.rows();
-    const MatrixXd P = d.tail(n).asDiagonal() * P_s * d.head(n).cwiseInverse().asDiagonal();
-    return 0.5 * (P + P.transpose());
-  }
+  const CareResult& solve(const MatrixRef& A, const MatrixRef& B);
+
+  void form_hamiltonian(const MatrixRef& A);
+  void scale_hamiltonian();
+  void equilibrate();
+  void balance();
+  bool sign_solution(int& iterations);
+  void schur_solution();
+  void unscale(const Eigen::Ref<const MatrixXd>& P_s, MatrixXd& P) const;
+  void evaluate(const MatrixRef& A, Candidate& c) const;
+  int refine(const MatrixRef& A);
+  const CareResult& finish(const MatrixRef& A, const MatrixRef& B, bool have_spectrum, int iterations);
+
+  CareMethod method;
+  Weights w;
+  MatrixXd R;  // as given: only for check_inputs' sizes
+  Index n, m;
+  double g_norm = 0.0;
+  MatrixXd H, H_s;  // H = [A, −G; −Q, −A'] and D⁻¹ H D
+  Eigen::VectorXd d;
+  MatrixSignSolver sign;
+  MatrixXd lhs, rhs;  // [S12; S22 + I] and −[S11 + I; S21]
+  Eigen::VectorXd qr_coefficients, qr_workspace;
+  MatrixXd U, U1, X;  // Schur vectors of H_s, U1 factored, U2' solved into X
+  Eigen::VectorXd wr, wi, schur_work, lu_work;
+  std::vector<int> bwork, pivots, lu_iwork;
+  Candidate candidate, next;
+  MatrixXd Ak, delta;
+  LyapunovWorkspace lyapunov;
+  Eigen::EigenSolver<MatrixXd> eigen;
+  CareResult result;
 };
 
-ScaledHamiltonian scaled(const MatrixXd& H, Eigen::VectorXd d) {
-  return {d.cwiseInverse().asDiagonal() * H * d.asDiagonal(), std::move(d)};
+CareSolver::Workspace::Workspace(const MatrixRef& Q, const MatrixRef& R_, CareMethod method_)
+    : method(method_), R(R_), n(Q.rows()), m(R_.rows()), H(2 * n, 2 * n), H_s(2 * n, 2 * n), d(2 * n),
+      sign(2 * n), lhs(2 * n, n), rhs(2 * n, n), qr_coefficients(n), qr_workspace(n), U(2 * n, 2 * n), U1(n, n), X(n, n),
+      wr(2 * n), wi(2 * n), lu_work(4 * n), bwork(2 * n), pivots(n), lu_iwork(n), Ak(n, n), delta(n, n),
+      lyapunov(std::max<Index>(n, 1)), eigen(n) {
+  if (n == 0 || Q.cols() != n) fail("Q must be square and non-empty, but Q is " + care::shape(Q));
+  if (m == 0 || R_.cols() != m) fail("R must be square and non-empty, but R is " + care::shape(R_));
+  if (!Q.allFinite()) fail("Q has a non-finite entry (NaN or Inf)");
+  if (!R_.allFinite()) fail("R has a non-finite entry (NaN or Inf)");
+  w = care::prepare_weights(Q, R_);
+  w.W.resize(m, n);
+  for (Candidate* c : {&candidate, &next}) {
+    c->P.resize(n, n);
+    c->WP.resize(m, n);
+    c->Res.resize(n, n);
+  }
+  // dgees' optimal workspace (a query), so that the blocked Hessenberg reduction can run.
+  const auto n2 = static_cast<lapack_int>(2 * n);
+  double optimal = 0.0;
+  lapack_int sdim = 0;
+  if (LAPACKE_dgees_work(LAPACK_COL_MAJOR, 'V', 'S', is_stable, n2, H.data(), n2, &sdim, wr.data(), wi.data(),
+                         U.data(), n2, &optimal, -1, bwork.data()) != 0)
+    fail("the dgees workspace query failed");
+  schur_work.resize(std::max<Index>(static_cast<Index>(optimal), 3 * n2));
+  result.P.resize(n, n);
+  result.K.resize(m, n);
+  result.closed_loop_eigenvalues.resize(n);
 }
 
-// For the Schur method, balancing only (no permutation): weights spanning 1e0…1e7 make H badly
-// scaled, and on the helicopter plant the unbalanced Schur solution was off by 1.8e-5. D is
-// computed on H without its diagonal, as scipy does: LAPACK ≥ 3.5 dgebal counts the diagonal in
-// its norms, and the large diagonal of A and −A' then hides the imbalance of G and Q (CAREX 2.1
-// went from 2e-5 to 1e-16 relative error, 2.7 from 1e-3 to 1e-10).
-ScaledHamiltonian balanced(const MatrixXd& H) {
-  const lapack_int n2 = static_cast<lapack_int>(H.rows());
-  MatrixXd M = H;
-  M.diagonal().setZero();
-  Eigen::VectorXd d(n2);
-  lapack_int ilo = 0;
-  lapack_int ihi = 0;
-  if (LAPACKE_dgebal(LAPACK_COL_MAJOR, 'S', n2, M.data(), n2, &ilo, &ihi, d.data()) != 0)
-    fail("balancing the Hamiltonian failed (LAPACK dgebal)");
-  return scaled(H, std::move(d));
+void CareSolver::Workspace::form_hamiltonian(const MatrixRef& A) {
+  H.topLeftCorner(n, n) = A;
+  H.topRightCorner(n, n).noalias() = -w.W.transpose() * w.W;
+  H.bottomLeftCorner(n, n) = -w.Q;
+  H.bottomRightCorner(n, n) = -A.transpose();
+  g_norm = H.topRightCorner(n, n).norm();
+}
+
+void CareSolver::Workspace::scale_hamiltonian() {
+  for (Index j = 0; j < 2 * n; ++j)
+    for (Index i = 0; i < 2 * n; ++i) H_s(i, j) = 1.0 / d(i) * H(i, j) * d(j);
 }
 
 // For the sign function, one scalar that gives G and Q the same 1-norm, as SB02MD's SCAL = 'G'
@@ -165,55 +142,80 @@ ScaledHamiltonian balanced(const MatrixXd& H) {
 // docs/performance.md): with it the sign function's forward error on the paper problem is
 // ~1e-15 and on random paper-scaled problems on a par with SB02MD; with the Schur method's
 // balancing instead it was larger on 9 of those 13 problems (1.4× in geometric mean).
-ScaledHamiltonian equilibrated(const MatrixXd& H) {
-  const Index n = H.rows() / 2;
+void CareSolver::Workspace::equilibrate() {
   const double q_norm = H.bottomLeftCorner(n, n).cwiseAbs().colwise().sum().maxCoeff();
-  const double g_norm = H.topRightCorner(n, n).cwiseAbs().colwise().sum().maxCoeff();
-  Eigen::VectorXd d = Eigen::VectorXd::Ones(2 * n);
-  if (q_norm > 0.0 && g_norm > 0.0) d.tail(n).setConstant(std::sqrt(q_norm / g_norm));
-  return scaled(H, std::move(d));
+  const double g_1norm = H.topRightCorner(n, n).cwiseAbs().colwise().sum().maxCoeff();
+  d.setOnes();
+  if (q_norm > 0.0 && g_1norm > 0.0) d.tail(n).setConstant(std::sqrt(q_norm / g_1norm));
+  scale_hamiltonian();
 }
 
-// Scaled Newton needs 8 inversions on the paper's problem and 9–13 on random ones of its size;
-// 40 is reached only near the imaginary axis, where the Schur method is the one to trust.
-constexpr int kSignIterations = 40;
+// For the Schur method, balancing only (no permutation): weights spanning 1e0…1e7 make H badly
+// scaled, and on the helicopter plant the unbalanced Schur solution was off by 1.8e-5. D is
+// computed on H without its diagonal, as scipy does: LAPACK ≥ 3.5 dgebal counts the diagonal in
+// its norms, and the large diagonal of A and −A' then hides the imbalance of G and Q (CAREX 2.1
+// went from 2e-5 to 1e-16 relative error, 2.7 from 1e-3 to 1e-10).
+void CareSolver::Workspace::balance() {
+  const auto n2 = static_cast<lapack_int>(2 * n);
+  H_s = H;
+  H_s.diagonal().setZero();
+  lapack_int ilo = 0;
+  lapack_int ihi = 0;
+  if (LAPACKE_dgebal_work(LAPACK_COL_MAJOR, 'S', n2, H_s.data(), n2, &ilo, &ihi, d.data()) != 0)
+    fail("balancing the Hamiltonian failed (LAPACK dgebal)");
+  scale_hamiltonian();
+}
+
+// P = D2 P_s D1⁻¹, symmetrized.
+void CareSolver::Workspace::unscale(const Eigen::Ref<const MatrixXd>& P_s, MatrixXd& P) const {
+  for (Index j = 0; j < n; ++j)
+    for (Index i = 0; i < n; ++i) P(i, j) = d(n + i) * P_s(i, j) * (1.0 / d(j));
+  for (Index j = 0; j < n; ++j)
+    for (Index i = 0; i < j; ++i) P(i, j) = P(j, i) = 0.5 * (P(i, j) + P(j, i));
+}
 
 // The stable invariant subspace [I; P] of H is the null space of sign(H) + I:
 // [S12; S22 + I] P = −[S11 + I; S21], 2n consistent equations for n columns, solved by QR.
-// Empty when the iteration fails or the system has no unique solution (no stabilizing P): the
-// Schur method then says which.
-std::optional<MatrixXd> sign_solution(const ScaledHamiltonian& scaled_h, int& iterations) {
-  const Index n = scaled_h.H.rows() / 2;
-  const std::optional<MatrixSign> sign = matrix_sign(scaled_h.H, kSignIterations);
-  if (!sign) return std::nullopt;
-  iterations = sign->iterations;
-  const MatrixXd& S = sign->sign;
-  MatrixXd lhs(2 * n, n);
-  MatrixXd rhs(2 * n, n);
-  lhs << S.topRightCorner(n, n), S.bottomRightCorner(n, n) + MatrixXd::Identity(n, n);
-  rhs << S.topLeftCorner(n, n) + MatrixXd::Identity(n, n), S.bottomLeftCorner(n, n);
-  const Eigen::HouseholderQR<MatrixXd> qr(lhs);
-  const Eigen::VectorXd r_diagonal = qr.matrixQR().diagonal().cwiseAbs();
-  if (!(r_diagonal.minCoeff() > static_cast<double>(2 * n) * kEps * r_diagonal.maxCoeff())) return std::nullopt;
-  const MatrixXd P_s = -qr.solve(rhs);
-  if (!P_s.allFinite()) return std::nullopt;
-  return scaled_h.unscale(P_s);
+// False when the iteration fails or the system has no unique solution (no stabilizing P): the
+// Schur method then says which. The solution goes to candidate.P.
+bool CareSolver::Workspace::sign_solution(int& iterations) {
+  equilibrate();
+  const std::optional<int> inversions = sign.compute(H_s, kSignIterations);
+  if (!inversions) return false;
+  iterations = *inversions;
+  const MatrixXd& S = sign.sign();
+  lhs.topRows(n) = S.topRightCorner(n, n);
+  lhs.bottomRows(n) = S.bottomRightCorner(n, n);
+  lhs.bottomRows(n).diagonal().array() += 1.0;
+  rhs.topRows(n) = -S.topLeftCorner(n, n);
+  rhs.topRows(n).diagonal().array() -= 1.0;
+  rhs.bottomRows(n) = -S.bottomLeftCorner(n, n);
+  // Householder QR and its least-squares solve, as HouseholderQR::compute and ::solve, into the
+  // buffers of this object: one reflector at a time, because Eigen's blocked forms allocate from
+  // n = 48 on (below that its compute() is this unblocked one).
+  Eigen::internal::householder_qr_inplace_unblocked(lhs, qr_coefficients, qr_workspace.data());
+  const auto r_diagonal = lhs.diagonal().cwiseAbs();
+  if (!(r_diagonal.minCoeff() > static_cast<double>(2 * n) * kEps * r_diagonal.maxCoeff())) return false;
+  for (Index k = 0; k < n; ++k)
+    rhs.bottomRows(2 * n - k).applyHouseholderOnTheLeft(lhs.col(k).tail(2 * n - k - 1), qr_coefficients(k),
+                                                        qr_workspace.data());
+  lhs.topLeftCorner(n, n).triangularView<Eigen::Upper>().solveInPlace(rhs.topRows(n));
+  if (!rhs.topRows(n).allFinite()) return false;
+  unscale(rhs.topRows(n), candidate.P);
+  return true;
 }
 
 // Laub's method on the balanced H; throws with the reason when there is no stabilizing solution.
-// The stable eigenvalues of H, which are eig(A − GP), come back in `stable`.
-MatrixXd schur_solution(const ScaledHamiltonian& scaled_h, Eigen::VectorXcd& stable) {
-  MatrixXd H = scaled_h.H;
-  const Index n = H.rows() / 2;
-  const lapack_int n2 = static_cast<lapack_int>(2 * n);
-  MatrixXd U(2 * n, 2 * n);
-  const double h_norm = H.norm();
-
-  Eigen::VectorXd wr(2 * n);
-  Eigen::VectorXd wi(2 * n);
+// The solution goes to candidate.P; the stable eigenvalues of H, which are eig(A − GP), to wr, wi.
+void CareSolver::Workspace::schur_solution() {
+  balance();
+  const auto n2 = static_cast<lapack_int>(2 * n);
+  const auto n1 = static_cast<lapack_int>(n);
+  const double h_norm = H_s.norm();
   lapack_int stable_count = 0;
-  const lapack_int info = LAPACKE_dgees(LAPACK_COL_MAJOR, 'V', 'S', is_stable, n2, H.data(), n2, &stable_count,
-                                        wr.data(), wi.data(), U.data(), n2);
+  const lapack_int info = LAPACKE_dgees_work(LAPACK_COL_MAJOR, 'V', 'S', is_stable, n2, H_s.data(), n2,
+                                             &stable_count, wr.data(), wi.data(), U.data(), n2, schur_work.data(),
+                                             static_cast<lapack_int>(schur_work.size()), bwork.data());
   if (info < 0 || (info > 0 && info <= n2))
     fail("the Schur decomposition of the Hamiltonian failed (LAPACK dgees info " + std::to_string(info) + ")");
 
@@ -237,36 +239,99 @@ MatrixXd schur_solution(const ScaledHamiltonian& scaled_h, Eigen::VectorXcd& sta
          ")" + kStabilizabilityHint);
 
   // The basis [U1; U2] is orthonormal, so rcond(U1) measures how far the stable subspace is from
-  // a graph subspace; P_bal = U2 U1⁻¹.
-  const Eigen::PartialPivLU<MatrixXd> lu(U.topLeftCorner(n, n).transpose());
-  const double rcond = lu.rcond();
+  // a graph subspace; P_bal = U2 U1⁻¹, i.e. U1' P_bal' = U2'. rcond in the ∞-norm of U1, the
+  // 1-norm of the U1' that is solved with.
+  U1 = U.topLeftCorner(n, n);
+  const double u1_norm = U1.cwiseAbs().rowwise().sum().maxCoeff();
+  double rcond = 0.0;
+  if (LAPACKE_dgetrf_work(LAPACK_COL_MAJOR, n1, n1, U1.data(), n1, pivots.data()) < 0 ||
+      LAPACKE_dgecon_work(LAPACK_COL_MAJOR, 'I', n1, U1.data(), n1, u1_norm, &rcond, lu_work.data(),
+                          lu_iwork.data()) != 0)
+    rcond = 0.0;
   if (!(rcond >= kEps))
     fail("no stabilizing solution: U1 of the stable invariant subspace [U1; U2] is singular to working "
          "precision (rcond(U1) = " + num(rcond) + ")" + kStabilizabilityHint);
-  stable.resize(n);
-  for (Index i = 0; i < n; ++i) stable(i) = {wr(i), wi(i)};
-  return scaled_h.unscale(lu.solve(U.bottomLeftCorner(n, n).transpose()).transpose());
+  X = U.bottomLeftCorner(n, n).transpose();
+  LAPACKE_dgetrs_work(LAPACK_COL_MAJOR, 'T', n1, n1, U1.data(), n1, pivots.data(), X.data(), n1);
+  X.transposeInPlace();
+  unscale(X, candidate.P);
 }
 
-CareResult solve_checked(const MatrixRef& A, const MatrixRef& B, const MatrixRef& Q, const MatrixRef& R,
-                         CareMethod method) {
-  Weights w = care::prepare_weights(Q, R);
+// W·P, the residual and η = care::normwise_residual of c.P.
+void CareSolver::Workspace::evaluate(const MatrixRef& A, Candidate& c) const {
+  c.WP.noalias() = w.W * c.P;
+  care::care_residual(A, w, c.P, c.WP, c.Res);
+  c.eta = care::normwise_residual(c.Res.norm(), w.Q.norm(), A.norm(), g_norm, c.P.norm());
+}
+
+// Returns the refinement steps taken; candidate is replaced only by better ones.
+int CareSolver::Workspace::refine(const MatrixRef& A) {
+  constexpr int kMaxRefinements = 4;
+  int refinements = 0;
+  while (candidate.eta > kRefineAbove && refinements < kMaxRefinements) {
+    Ak = A;
+    Ak.noalias() -= w.W.transpose() * candidate.WP;
+    try {
+      lyapunov.factor(Ak);
+      lyapunov.solve(candidate.Res, delta);
+    } catch (const Error&) {
+      break;  // A − GP is not Hurwitz: finish() reports that with the eigenvalue
+    }
+    next.P = candidate.P + delta;
+    for (Index j = 0; j < n; ++j)
+      for (Index i = 0; i < j; ++i) next.P(i, j) = next.P(j, i) = 0.5 * (next.P(i, j) + next.P(j, i));
+    evaluate(A, next);
+    if (!(next.eta < candidate.eta)) break;
+    std::swap(candidate, next);
+    ++refinements;
+  }
+  return refinements;
+}
+
+// Fills K, the closed-loop spectrum (unless wr, wi hold it already) and the residual, and refuses a
+// P that does not stabilize: the last line of defence against returning garbage.
+const CareResult& CareSolver::Workspace::finish(const MatrixRef& A, const MatrixRef& B, bool have_spectrum,
+                                                int iterations) {
+  // A basis of the stable subspace that is not a graph can slip past the rcond test (or come out
+  // of a balancing that had nothing to balance) as Inf/NaN entries: never return those.
+  if (!candidate.P.allFinite() || !candidate.WP.allFinite())
+    fail("no stabilizing solution: the computed P has non-finite entries" + std::string(kStabilizabilityHint));
+  result.K = candidate.WP;
+  w.L.transpose().triangularView<Eigen::Upper>().solveInPlace(result.K);
+  if (have_spectrum) {
+    for (Index i = 0; i < n; ++i) result.closed_loop_eigenvalues(i) = {wr(i), wi(i)};
+  } else {
+    Ak = A;
+    Ak.noalias() -= B * result.K;
+    eigen.compute(Ak, false);
+    result.closed_loop_eigenvalues = eigen.eigenvalues();
+  }
+  const double max_real = result.closed_loop_eigenvalues.real().maxCoeff();
+  if (!(max_real < 0.0))
+    fail("the solution is not stabilizing: A − BK has an eigenvalue with Re λ = " + num(max_real) +
+         kStabilizabilityHint);
+  result.relative_residual = care::relative_to_q(candidate.Res.norm(), w);
+  result.P = candidate.P;
+  result.iterations = iterations;
+  return result;
+}
+
+const CareResult& CareSolver::Workspace::solve(const MatrixRef& A, const MatrixRef& B) {
+  care::check_inputs(A, B, w.Q, R);
   care::set_input_matrix(w, B);
-  const Index n = A.rows();
-  const MatrixXd H = hamiltonian(A, w);
-  const double g_norm = H.topRightCorner(n, n).norm();
+  form_hamiltonian(A);
 
   if (method != CareMethod::schur) {
     int sign_iterations = 0;
-    if (std::optional<MatrixXd> P = sign_solution(equilibrated(H), sign_iterations)) {
-      Candidate c = evaluate(A, w, g_norm, std::move(*P));
-      if (c.eta <= kRefineAbove || method == CareMethod::matrix_sign) {
-        const int refinements = refine(A, w, g_norm, c);
-        if (c.eta > kRefineAbove)
-          fail("the matrix sign solution is not backward stable (normwise residual " + num(c.eta) + " after " +
-               std::to_string(refinements) + " Newton refinement steps); CareMethod::schur or automatic solves "
-               "this equation");
-        CareResult result = finish(A, B, w, {std::move(c.P), std::move(c.WP), &c.Res, nullptr}, refinements);
+    if (sign_solution(sign_iterations)) {
+      evaluate(A, candidate);
+      if (candidate.eta <= kRefineAbove || method == CareMethod::matrix_sign) {
+        const int refinements = refine(A);
+        if (candidate.eta > kRefineAbove)
+          fail("the matrix sign solution is not backward stable (normwise residual " + num(candidate.eta) +
+               " after " + std::to_string(refinements) + " Newton refinement steps); CareMethod::schur or "
+               "automatic solves this equation");
+        finish(A, B, false, refinements);
         result.sign_iterations = sign_iterations;
         return result;
       }
@@ -277,26 +342,36 @@ CareResult solve_checked(const MatrixRef& A, const MatrixRef& B, const MatrixRef
     }
   }
 
-  Eigen::VectorXcd stable;
-  Candidate c = evaluate(A, w, g_norm, schur_solution(balanced(H), stable));
-  const int refinements = refine(A, w, g_norm, c);
+  schur_solution();
+  evaluate(A, candidate);
+  const int refinements = refine(A);
   // eig(A − GP) are the stable eigenvalues of H for the P of its stable subspace: the Schur form
-  // has them (dgees ordered them first), which saves an eigensolver. A
-  // refined P is no longer that P exactly, so its spectrum is computed afresh.
-  return finish(A, B, w, {std::move(c.P), std::move(c.WP), &c.Res, refinements == 0 ? &stable : nullptr},
-                refinements);
+  // has them (dgees ordered them first), which saves an eigensolver. A refined P is no longer that
+  // P exactly, so its spectrum is computed afresh.
+  finish(A, B, refinements == 0, refinements);
+  result.sign_iterations = 0;
+  return result;
 }
 
-}  // namespace
+CareSolver::CareSolver(const MatrixRef& Q, const MatrixRef& R, CareMethod method)
+    : workspace_(std::make_unique<Workspace>(Q, R, method)) {}
+
+CareSolver::~CareSolver() = default;
+
+CareSolver::CareSolver(const CareSolver& other) : workspace_(std::make_unique<Workspace>(*other.workspace_)) {}
+
+const CareResult& CareSolver::solve(const MatrixRef& A, const MatrixRef& B) {
+  try {
+    return workspace_->solve(A, B);
+  } catch (const Error& error) {
+    rethrow_with_diagnosis(error, A, B, workspace_->w.Q);
+  }
+}
 
 CareResult solve_care(const MatrixRef& A, const MatrixRef& B, const MatrixRef& Q, const MatrixRef& R,
                       CareMethod method) {
   care::check_inputs(A, B, Q, R);
-  try {
-    return solve_checked(A, B, Q, R, method);
-  } catch (const Error& error) {
-    rethrow_with_diagnosis(error, A, B, Q);
-  }
+  return CareSolver(Q, R, method).solve(A, B);
 }
 
 }  // namespace thetad

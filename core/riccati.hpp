@@ -21,6 +21,8 @@
 //  - the closed-loop matrix A − BK that comes out is not Hurwitz.
 // The error reporting follows SLICOT SB02MD / MATLAB care.
 
+#include <memory>
+
 #include <Eigen/Dense>
 
 #include "core/care_result.hpp"
@@ -45,7 +47,29 @@ enum class CareMethod {
   schur,
 };
 
-// The direct solver: no initial guess needed.
+// The direct solver for fixed weights Q, R and fixed sizes: the SDRE's cold step. Every buffer and
+// LAPACK workspace is sized at construction; solve() allocates nothing unless it throws (a failure
+// names the precondition the data break, care_diagnosis.hpp). Not thread-safe per object.
+class CareSolver {
+ public:
+  // Q n×n symmetric positive semi-definite, R m×m symmetric positive definite (checked).
+  CareSolver(const Eigen::Ref<const Eigen::MatrixXd>& Q, const Eigen::Ref<const Eigen::MatrixXd>& R,
+             CareMethod method = CareMethod::automatic);
+  ~CareSolver();
+  CareSolver(const CareSolver& other);
+  CareSolver& operator=(const CareSolver&) = delete;
+
+  // The stabilizing solution for (A, B), with the errors listed at the top of this file. The
+  // result lives in this object until the next call.
+  const CareResult& solve(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::MatrixXd>& B);
+
+ private:
+  struct Workspace;
+  std::unique_ptr<Workspace> workspace_;
+};
+
+// The direct solver for a one-off equation: CareSolver(Q, R, method).solve(A, B); no initial guess
+// needed.
 CareResult solve_care(const Eigen::Ref<const Eigen::MatrixXd>& A,
                       const Eigen::Ref<const Eigen::MatrixXd>& B,
                       const Eigen::Ref<const Eigen::MatrixXd>& Q,

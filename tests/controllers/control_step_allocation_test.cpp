@@ -61,7 +61,7 @@ struct Counts {
   long heap = 0;
 };
 
-// reset, one step outside the count (the SDRE's first sample is a cold solve by design), then
+// reset, one step outside the count (the SDRE's first sample is a cold solve in either mode), then
 // kSteps counted steps on the recorded samples in order.
 Counts count_steps(Controller& controller) {
   const auto& f = testing::scenario_one_flight();
@@ -103,18 +103,18 @@ TEST_P(ControlStepAllocations, AreExactlyZeroOver1000Steps) {
   const Counts counts = count_steps(*controller);
   EXPECT_EQ(counts.operator_new, 0) << label;
   EXPECT_EQ(counts.heap, 0) << label;
-  // A warm SDRE that fell back to a cold solve would allocate there: none did on these states.
+  // The warm SDRE's count is of its Newton–Kleinman steps only if none fell back to the cold solve,
+  // and the cold SDRE's of the matrix sign path only if no solve failed: so it was on these states.
   if (const auto* sdre = dynamic_cast<const SdreController*>(controller.get())) {
     EXPECT_EQ(sdre->fallback_count(), 0);
     EXPECT_EQ(sdre->failure_count(), 0);
   }
 }
 
-// Not the SDRE's cold mode: solve_care returns fresh matrices and its sign-function and Schur
-// paths allocate (192 heap allocations per step measured on these states); see sdre.hpp.
 INSTANTIATE_TEST_SUITE_P(BuiltIn, ControlStepAllocations,
                          ::testing::Values(Case{"theta_d", "theta-d", "{}"}, Case{"sdre_warm", "sdre", "{mode: warm}"},
-                                           Case{"lqr", "lqr", "{}"}, Case{"lqr_scheduled", "lqr-scheduled", "{}"}),
+                                           Case{"sdre_cold", "sdre", "{mode: cold}"}, Case{"lqr", "lqr", "{}"},
+                                           Case{"lqr_scheduled", "lqr-scheduled", "{}"}),
                          [](const auto& info) { return std::string(info.param.label); });
 
 }  // namespace
