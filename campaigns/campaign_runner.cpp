@@ -21,6 +21,13 @@ namespace thetad {
 
 namespace {
 
+// The runs whose log is kept (--keep-logs).
+std::optional<KeptLogs> kept_logs(const CampaignOptions& options) {
+  if (!options.keep_logs) return std::nullopt;
+  if (*options.keep_logs < 0) throw Error("--keep-logs " + std::to_string(*options.keep_logs) + ": must be >= 0");
+  return KeptLogs{*options.keep_logs, options.out};
+}
+
 // The runs still to fly, handed out in run-index order to whoever asks first.
 class RunDispenser {
  public:
@@ -41,11 +48,11 @@ class RunDispenser {
 // finished records wait in a queue for the writer.
 class ThreadPool {
  public:
-  ThreadPool(const Campaign& campaign, bool timing, RunDispenser& dispenser, int threads) {
+  ThreadPool(const Campaign& campaign, const CampaignOptions& options, RunDispenser& dispenser, int threads) {
     for (int i = 0; i < threads; ++i) {
-      threads_.emplace_back([this, &campaign, timing, &dispenser] {
+      threads_.emplace_back([this, &campaign, &options, &dispenser] {
         try {
-          CampaignWorker worker(campaign, timing);
+          CampaignWorker worker(campaign, options.timing, kept_logs(options));
           while (!stop_) {
             const auto index = dispenser.next();
             if (!index) break;
@@ -97,7 +104,7 @@ int default_jobs(bool mpi) {
 CampaignOutcome coordinate(const Campaign& campaign, const CampaignOptions& options, MpiSession* mpi) {
   // Every flight and controller built once: a bad cell or settings block fails before anything
   // flies or is written.
-  CampaignWorker check(campaign, options.timing);
+  CampaignWorker check(campaign, options.timing, kept_logs(options));
   check.prepare_all();
   std::filesystem::create_directories(options.out);
   CampaignStore store(store_file(options.out), campaign, options.shard,
@@ -115,7 +122,7 @@ CampaignOutcome coordinate(const Campaign& campaign, const CampaignOptions& opti
   RunDispenser dispenser(std::move(pending));
   const int remote = mpi ? mpi->size() - 1 : 0;
   int stopped = 0;
-  ThreadPool pool(campaign, options.timing, dispenser, options.jobs > 0 ? options.jobs : default_jobs(mpi != nullptr));
+  ThreadPool pool(campaign, options, dispenser, options.jobs > 0 ? options.jobs : default_jobs(mpi != nullptr));
   std::size_t written = 0;
   // With other ranks to serve, the writer wakes every millisecond to answer them promptly.
   const std::chrono::milliseconds wait(mpi ? 1 : 250);
@@ -140,7 +147,7 @@ CampaignOutcome coordinate(const Campaign& campaign, const CampaignOptions& opti
 
 // Any other rank: flies the indices rank 0 hands out until it says stop.
 CampaignOutcome serve(const Campaign& campaign, const CampaignOptions& options, MpiSession& mpi) {
-  CampaignWorker worker(campaign, options.timing);
+  CampaignWorker worker(campaign, options.timing, kept_logs(options));
   std::optional<RunRecord> finished;
   CampaignOutcome outcome;
   outcome.writer = false;

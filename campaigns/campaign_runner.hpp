@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 
 #include "campaigns/campaign.hpp"
 #include "campaigns/run_plan.hpp"
@@ -15,6 +16,9 @@ struct CampaignOptions {
   int jobs = 0;               // worker threads; 0: every core (one per rank under mpirun)
   bool resume = false;        // continue the database in `out`, skipping the runs it holds
   bool timing = true;         // false: no wall-clock figure (--no-timing)
+  // --keep-logs K: the full logs of the first K draws of every cell and of every run that did not
+  // complete, under out/logs (KeptLogs); none without.
+  std::optional<int> keep_logs;
   Progress::Mode progress = Progress::Mode::lines;
 };
 

@@ -3,10 +3,12 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
+#include "experiment/run_files.hpp"
 
 namespace thetad {
 
-CampaignWorker::CampaignWorker(const Campaign& campaign, bool timing) : campaign_(campaign), timing_(timing) {}
+CampaignWorker::CampaignWorker(const Campaign& campaign, bool timing, std::optional<KeptLogs> logs)
+    : campaign_(campaign), timing_(timing), logs_(std::move(logs)) {}
 
 Flight& CampaignWorker::flight(int cell, int scenario) {
   std::unique_ptr<Flight>& entry = flights_[{cell, scenario}];
@@ -41,8 +43,19 @@ RunRecord CampaignWorker::fly(std::int64_t index) {
   Flight& cell = flight(run.cell, run.scenario);
   PreparedController& prepared = controller(cell, run.scenario, run.controller);
   cell.set_seed(run.seed);
-  const RunResult result = cell.fly(prepared);
+  const bool kept = logs_ && logs_->keeps(run);
+  const RunResult result = kept ? fly_logged(cell, prepared, index) : cell.fly(prepared);
+  if (logs_ && !kept && !result.completed()) fly_logged(cell, prepared, index);
   return make_record(run, campaign_.cells[static_cast<std::size_t>(run.cell)], result);
+}
+
+RunResult CampaignWorker::fly_logged(Flight& flight, PreparedController& prepared, std::int64_t index) const {
+  const bool keep_log = flight.settings().keep_log;
+  flight.set_keep_log(true);
+  RunResult result = flight.fly(prepared);
+  flight.set_keep_log(keep_log);
+  write_run_files(result, logs_->run_folder(index));
+  return result;
 }
 
 void CampaignWorker::prepare_all() {

@@ -3,12 +3,14 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <tuple>
 #include <utility>
 #include <vector>
 
 #include "campaigns/campaign.hpp"
+#include "campaigns/kept_logs.hpp"
 #include "campaigns/run_record.hpp"
 #include "experiment/flight.hpp"
 
@@ -22,9 +24,13 @@ namespace thetad {
 // same state share one (a sweep over disturbances designs the gain-scheduled LQR's table once).
 class CampaignWorker {
  public:
-  // `timing`: false flies without wall-clock figures (--no-timing).
-  CampaignWorker(const Campaign& campaign, bool timing);
+  // `timing`: false flies without wall-clock figures (--no-timing). `logs`: the runs whose full log
+  // is written (none without).
+  CampaignWorker(const Campaign& campaign, bool timing, std::optional<KeptLogs> logs = std::nullopt);
 
+  // Flies run `index` summary-only; a run whose log is kept flies with it and writes its files,
+  // and one that did not complete flies again with its log (its seed flies the same run, bit for
+  // bit), so that only the few runs kept pay for a log.
   RunRecord fly(std::int64_t index);
 
   // Builds every (cell, scenario) flight and every controller once: a bad factor value (a dt that
@@ -41,12 +47,15 @@ class CampaignWorker {
  private:
   Flight& flight(int cell, int scenario);
   PreparedController& controller(const Flight& flight, int scenario, int index);
+  // The run `prepared` flies in `flight`, with its log, written to the folder of run `index`.
+  RunResult fly_logged(Flight& flight, PreparedController& prepared, std::int64_t index) const;
 
   // A controller's design: scenario, initial state and controller index.
   using DesignKey = std::tuple<int, std::vector<double>, int>;
 
   const Campaign& campaign_;
   bool timing_;
+  std::optional<KeptLogs> logs_;
   std::map<std::pair<int, int>, std::unique_ptr<Flight>> flights_;
   // Each refers to the model of the flight it was designed for (equal in every cell of a scenario).
   std::map<DesignKey, std::unique_ptr<PreparedController>> controllers_;

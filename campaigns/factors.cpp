@@ -1,6 +1,7 @@
 #include "campaigns/factors.hpp"
 
 #include <limits>
+#include <numbers>
 
 #include "core/error.hpp"
 
@@ -14,6 +15,12 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 void offset_axis(RunControls& controls, int axis, double value) {
   if (!controls.initial_offset) controls.initial_offset = Eigen::Vector3d::Zero();
   (*controls.initial_offset)[axis] = value;
+}
+
+// The attitude offset likewise, read in degrees (as people state angles), flown in radians.
+void attitude_axis(RunControls& controls, int axis, double degrees) {
+  if (!controls.initial_attitude_offset) controls.initial_attitude_offset = Eigen::Vector3d::Zero();
+  (*controls.initial_attitude_offset)[axis] = degrees * std::numbers::pi / 180.0;
 }
 
 }  // namespace
@@ -34,6 +41,14 @@ const std::vector<Factor>& factors() {
        [](double v, RunControls& c) { offset_axis(c, 1, v); }},
       {"initial_offset_z", "m", "added to the initial down position (negative: higher)", -kInf, kInf,
        [](double v, RunControls& c) { offset_axis(c, 2, v); }},
+      {"initial_offset_roll", "deg", "added to the initial roll angle phi", -180.0, 180.0,
+       [](double v, RunControls& c) { attitude_axis(c, 0, v); }},
+      {"initial_offset_pitch", "deg", "added to the initial pitch angle theta", -180.0, 180.0,
+       [](double v, RunControls& c) { attitude_axis(c, 1, v); }},
+      {"initial_offset_yaw", "deg", "added to the initial yaw angle psi (heading)", -180.0, 180.0,
+       [](double v, RunControls& c) { attitude_axis(c, 2, v); }},
+      {"trajectory_speed_scale", "", "flies the same path this many times faster (the scenario's duration / s)",
+       0.01, 100.0, [](double v, RunControls& c) { c.speed_scale = v; }},
       {"dt", "s", "plant (RK4) step; must divide the controller period", 0.0, kInf,
        [](double v, RunControls& c) { c.dt = v; }},
       {"duration", "s", "flight duration (shorter than the scenario: the flight stops there)", 0.0,

@@ -26,7 +26,7 @@ Scenario load(const std::string& file_or_name, std::string& sha256) {
 }  // namespace
 
 Flight::Flight(const std::string& scenario, const RunControls& controls)
-    : scenario_(load(scenario, provenance_.scenario_sha256)),
+    : scenario_(at_speed(controls, load(scenario, provenance_.scenario_sha256))),
       settings_(scenario_.simulation_settings()),
       initial_state_(offset_initial_state(controls, scenario_.initial_state)),
       model_(heli::Parameters::nominal(), scenario_.model_options) {
@@ -57,6 +57,13 @@ std::string Flight::disturbances() const {
                 on(settings_.parameter_uncertainty), on(settings_.wind_gust.enabled), on(noise.measurement),
                 on(noise.actuator), on(noise.wind_component), on(noise.induced_velocity));
   return text;
+}
+
+void Flight::set_keep_log(bool keep) {
+  sim::SimulationSettings settings = settings_;
+  settings.keep_log = keep;
+  settings.validate();
+  settings_ = settings;
 }
 
 PreparedController Flight::prepare(const ControllerSpec& spec) const {

@@ -36,8 +36,10 @@ class Flight {
   // `scenario`: a file, or the name of a shipped scenario (find_scenario).
   explicit Flight(const std::string& scenario, const RunControls& controls = {});
 
+  // The scenario as flown: at the controls' speed_scale.
   const Scenario& scenario() const { return scenario_; }
-  // Where the helicopter starts: the scenario's initial state, moved by the controls' initial_offset.
+  // Where the helicopter starts: the scenario's initial state, moved and turned by the controls'
+  // initial offsets.
   const Eigen::VectorXd& initial_state() const { return initial_state_; }
   const sim::SimulationSettings& settings() const { return settings_; }
   // The controllers' model: nominal parameters, the scenario's model options, no wind.
@@ -49,6 +51,9 @@ class Flight {
 
   // Flies the next runs with `seed` (a campaign's draws reuse one Flight and its controllers).
   void set_seed(std::uint64_t seed) { settings_.seed = provenance_.seed = seed; }
+  // Flies the next runs with their log or summary-only (a campaign keeps the logs of a few runs).
+  // Throws thetad::Error when the log would not fit in memory (SimulationSettings::validate).
+  void set_keep_log(bool keep);
 
   // The controller of `spec`, designed for the scenario's initial state. Errors name the settings
   // file and field. The controller refers to model(): the Flight must outlive it.

@@ -82,10 +82,20 @@ void apply(const RunControls& controls, sim::SimulationSettings& settings) {
 
 Eigen::VectorXd offset_initial_state(const RunControls& controls, const Eigen::VectorXd& initial_state) {
   Eigen::VectorXd x = initial_state;
-  if (!controls.initial_offset) return x;
-  if (!controls.initial_offset->allFinite()) throw Error("initial_offset: every entry must be finite");
-  x.segment<3>(heli::kXp) += *controls.initial_offset;
+  if (controls.initial_offset) {
+    if (!controls.initial_offset->allFinite()) throw Error("initial_offset: every entry must be finite");
+    x.segment<3>(heli::kXp) += *controls.initial_offset;
+  }
+  if (controls.initial_attitude_offset) {
+    if (!controls.initial_attitude_offset->allFinite())
+      throw Error("initial_attitude_offset: every entry must be finite");
+    x.segment<3>(heli::kPhi) += *controls.initial_attitude_offset;
+  }
   return x;
+}
+
+Scenario at_speed(const RunControls& controls, const Scenario& scenario) {
+  return controls.speed_scale ? scenario.at_speed(*controls.speed_scale) : scenario;
 }
 
 }  // namespace thetad

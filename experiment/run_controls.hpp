@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 
 #include "core/sim/simulator.hpp"
+#include "scenarios/scenario.hpp"
 
 namespace thetad {
 
@@ -28,17 +29,26 @@ struct RunControls {
   std::optional<double> gust_onset;         // s: calm air before it
   // Added to the scenario's initial position (m, north-east-down): the flight starts off the trajectory.
   std::optional<Eigen::Vector3d> initial_offset;
+  // Added to the scenario's initial Euler angles (rad: roll φ, pitch θ, yaw ψ): the flight starts tilted.
+  std::optional<Eigen::Vector3d> initial_attitude_offset;
+  // The scenario's trajectory flown this many times faster (Scenario::at_speed): the same path in
+  // 1/s of the time, the flight's duration included. `duration`, when also given, is the flown time.
+  std::optional<double> speed_scale;
   std::optional<bool> summary_only;      // true: no log, the summary only
   std::optional<bool> timing;            // false: no wall-clock figure anywhere (byte-identical reruns)
 };
 
 // `settings` with `controls` applied. The controller keeps sampling at the scenario's period with
 // zero-order hold, so a new dt must divide that period: otherwise thetad::Error names both. A scale
-// or onset out of range is an error naming it. (initial_offset acts on the initial state: Flight.)
+// or onset out of range is an error naming it. (The initial offsets act on the initial state and
+// speed_scale on the scenario: Flight.)
 void apply(const RunControls& controls, sim::SimulationSettings& settings);
 
-// `initial_state` moved by controls.initial_offset (unchanged without one); a non-finite offset
-// is an error.
+// `initial_state` moved by controls.initial_offset and turned by controls.initial_attitude_offset
+// (unchanged without them); a non-finite offset is an error.
 Eigen::VectorXd offset_initial_state(const RunControls& controls, const Eigen::VectorXd& initial_state);
+
+// `scenario` flown at controls.speed_scale (itself without one).
+Scenario at_speed(const RunControls& controls, const Scenario& scenario);
 
 }  // namespace thetad

@@ -241,6 +241,14 @@ Scenario read_scenario(const YAML::Node& root, const std::string& source) {
 
 }  // namespace
 
+Scenario Scenario::at_speed(double speed_scale) const {
+  Scenario faster = *this;
+  faster.trajectory = trajectory.time_scaled(speed_scale);
+  faster.duration = duration / speed_scale;
+  if (simulation_duration) faster.simulation_duration = *simulation_duration / speed_scale;
+  return faster;
+}
+
 sim::SimulationSettings Scenario::simulation_settings(sim::SimulationSettings base) const {
   base.duration = simulation_duration.value_or(duration);
   if (dt) base.dt = *dt;

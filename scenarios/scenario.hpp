@@ -46,6 +46,13 @@ struct Scenario {
   std::optional<bool> wind_noise;              // Table 1 #26-28
   std::optional<bool> induced_velocity_noise;  // Table 1 #29-30
 
+  // This scenario with its trajectory flown `speed_scale` times faster (PhasedTrajectory::time_scaled):
+  // the same path in 1/s of the time, so duration and simulation_duration shrink by s too, and a
+  // flight still covers the whole path, hovers included. What is physics rather than task keeps
+  // its time: the plant and controller steps, the wind (its onset too) and the noises. Throws
+  // thetad::Error unless s is positive and finite.
+  Scenario at_speed(double speed_scale) const;
+
   // `base` with this scenario's duration and overrides applied.
   sim::SimulationSettings simulation_settings(sim::SimulationSettings base = sim::SimulationSettings::paper()) const;
 };

@@ -63,6 +63,32 @@ void validate(const std::string& phase, const Motion& motion) {
              motion);
 }
 
+// `motion` on a clock running `s` times faster. Hold, Ramp, Step and Blend are shaped by the
+// fraction of their phase, which the phase's shorter duration scales by itself.
+Motion on_faster_clock(const Motion& motion, double s) {
+  return std::visit(Overloaded{
+                        [&](Accelerate m) -> Motion {
+                          m.start_speed *= s;
+                          m.end_speed *= s;
+                          return m;
+                        },
+                        [&](Sinusoid m) -> Motion {
+                          m.period /= s;
+                          return m;
+                        },
+                        [&](FigureEight m) -> Motion {
+                          m.period /= s;
+                          return m;
+                        },
+                        [&](Circle m) -> Motion {
+                          m.period /= s;
+                          return m;
+                        },
+                        [](const auto& m) -> Motion { return m; },
+                    },
+                    motion);
+}
+
 }  // namespace
 
 Eigen::Vector3d Hold::position(const Eigen::Vector3d& start, double, double) const { return start; }
@@ -129,6 +155,15 @@ void PhasedTrajectory::append(std::string name, double end_time, const Motion& m
   validate(name, motion);
   const Eigen::Vector3d start_position = end_position();
   phases_.push_back({std::move(name), start_time, end_time, start_position, motion});
+}
+
+PhasedTrajectory PhasedTrajectory::time_scaled(double speed_scale) const {
+  if (!(speed_scale > 0.0) || !std::isfinite(speed_scale))
+    throw Error("trajectory speed scale " + std::to_string(speed_scale) + ": must be positive and finite");
+  PhasedTrajectory scaled(start_);
+  for (const Phase& phase : phases_)
+    scaled.append(phase.name, phase.end_time / speed_scale, on_faster_clock(phase.motion, speed_scale));
+  return scaled;
 }
 
 Eigen::Vector3d PhasedTrajectory::position(double t) const {

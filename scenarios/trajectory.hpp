@@ -116,6 +116,12 @@ class PhasedTrajectory final : public ReferenceTrajectory {
   double end_time() const { return phases_.empty() ? 0.0 : phases_.back().end_time; }
   Eigen::Vector3d end_position() const { return phases_.empty() ? start_ : phases_.back().end_position(); }
 
+  // The same path flown `speed_scale` times faster: r_s(t) = r(s t), so velocities are s times and
+  // accelerations s² times the original's. Every phase ends at end_time / s, and each motion's
+  // own clock follows (periods / s, Accelerate's speeds × s); the positions, targets and
+  // amplitudes stay. Throws thetad::Error unless s is positive and finite.
+  PhasedTrajectory time_scaled(double speed_scale) const;
+
  private:
   Eigen::Vector3d start_;
   std::vector<Phase> phases_;

@@ -30,6 +30,11 @@ CLI::App* add_campaign_command(CLI::App& app, CampaignArguments& a) {
   a.run->add_option("--shard", a.shard, "Fly part k of N (k/N) into its own database; `campaign merge` joins them")
       ->capture_default_str();
   a.run->add_flag("--no-timing", a.no_timing, "No wall-clock figures: identical databases for identical campaigns");
+  a.run->add_option("--keep-logs", a.keep_logs,
+                    "Keep the full logs (CSV and JSON) of the first K draws of every cell and of every run that did "
+                    "not complete, in DIR/logs/RUN_INDEX/")
+      ->check(CLI::Range(0, 1000000))
+      ->type_name("K");
   a.run->add_flag("--dry-run", a.dry_run, "Check the file, print the run count and a cost estimate from a short pilot");
   a.run->add_option("--pilot", a.pilot_seconds, "Simulated seconds each controller flies in the --dry-run pilot")
       ->check(CLI::Range(0.01, 3600.0))
@@ -73,6 +78,7 @@ int run(const CampaignArguments& a) {
   options.jobs = a.jobs;
   options.resume = a.resume;
   options.timing = !a.no_timing;
+  options.keep_logs = a.keep_logs;
   options.progress = Progress::mode_for_stderr(a.quiet);
   const CampaignOutcome outcome = run_campaign(campaign, options);
   if (outcome.writer) {

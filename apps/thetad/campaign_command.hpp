@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,7 @@ struct CampaignArguments {
   bool resume = false;
   std::string shard = "1/1";
   bool no_timing = false;
+  std::optional<int> keep_logs;
   bool dry_run = false;
   double pilot_seconds = 1.0;
   bool quiet = false;

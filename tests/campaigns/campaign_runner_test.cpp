@@ -1,6 +1,10 @@
 #include "campaigns/campaign_runner.hpp"
 
+#include <algorithm>
 #include <fstream>
+#include <iterator>
+#include <map>
+#include <set>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -8,6 +12,7 @@
 #include "campaigns/campaign_merge.hpp"
 #include "campaigns/run_plan.hpp"
 #include "core/error.hpp"
+#include "experiment/run_files.hpp"
 #include "tests/campaigns/campaign_testing.hpp"
 #include "tests/scratch_directory.hpp"
 
@@ -120,6 +125,68 @@ TEST_F(CampaignRunner, MergeRefusesShardsOfAnotherCampaignAMissingOrRepeatedShar
   EXPECT_THAT(merge_error({scratch_.path() / "a1"}), HasSubstr("shard 2/2 is missing"));
   EXPECT_THAT(merge_error({scratch_.path() / "a1", scratch_.path() / "a1"}), HasSubstr("given twice"));
   EXPECT_FALSE(fs::exists(store_file(scratch_.path() / "merged")));
+}
+
+// The files under <out>/logs, relative to it, with their bytes.
+std::map<std::string, std::string> kept_files(const fs::path& out) {
+  std::map<std::string, std::string> files;
+  for (const auto& entry : fs::recursive_directory_iterator(out / "logs")) {
+    if (!entry.is_regular_file()) continue;
+    std::ifstream in(entry.path(), std::ios::binary);
+    files[fs::relative(entry.path(), out).string()] = {std::istreambuf_iterator<char>(in), {}};
+  }
+  return files;
+}
+
+TEST_F(CampaignRunner, KeptLogsAreTheFirstDrawsOfEveryCellAndEveryDivergedRunWhateverTheWorkers) {
+  // Cell 1 starts rolled past the divergence limit: each of its runs diverges at once.
+  const Campaign c = campaign(testing::small_campaign("kept-logs", 3, 5,
+                                                      "{list: [{initial_offset_roll: 0}, {initial_offset_roll: 90}]}"));
+  CampaignOptions one = options("one", 1);
+  one.keep_logs = 1;
+  run_campaign(c, one);
+  const std::vector<RunRecord> records = stored_records(one.out);
+  ASSERT_EQ(records.size(), 12u);
+  std::set<std::string> expected;
+  for (const RunRecord& record : records) {
+    EXPECT_EQ(record.completed(), record.cell == 0) << record.index;
+    if (record.draw == 0 || !record.completed()) {
+      for (const char* extension : {".csv", ".json"})
+        expected.insert((fs::path("logs") / std::to_string(record.index) / (record.controller + extension)).string());
+    }
+  }
+  const std::map<std::string, std::string> kept = kept_files(one.out);
+  std::set<std::string> names;
+  for (const auto& [name, bytes] : kept) names.insert(name);
+  EXPECT_EQ(names, expected);
+  // A kept log is the whole flight, and its result the row's: 0.2 s at 1 kHz.
+  const StoredRun first = read_run_files(one.out / "logs" / "0" / (records[0].controller + ".json"));
+  EXPECT_EQ(first.result.at("controller_samples").get<std::int64_t>(), records[0].controller_samples);
+  EXPECT_EQ(first.result.at("seed").get<std::uint64_t>(), records[0].seed);
+  EXPECT_EQ(std::count(kept.at("logs/0/" + records[0].controller + ".csv").begin(),
+                       kept.at("logs/0/" + records[0].controller + ".csv").end(), '\n'),
+            1 + 200);
+  const StoredRun diverged = read_run_files(one.out / "logs" / "7" / (records[7].controller + ".json"));
+  EXPECT_EQ(diverged.result.at("status").get<std::string>(), "diverged");
+  EXPECT_EQ(diverged.result.at("reason").get<std::string>(), records[7].reason);
+
+  // Which logs are kept depends on the plan alone: two workers, or three shards, keep the same files.
+  CampaignOptions two = options("two", 2);
+  two.keep_logs = 1;
+  run_campaign(c, two);
+  EXPECT_EQ(kept_files(two.out), kept);
+  std::map<std::string, std::string> sharded;
+  for (int k = 1; k <= 3; ++k) {
+    CampaignOptions part = options("shard" + std::to_string(k), 1);
+    part.shard = Shard{k, 3};
+    part.keep_logs = 1;
+    run_campaign(c, part);
+    sharded.merge(kept_files(part.out));
+  }
+  EXPECT_EQ(sharded, kept);
+  // Without --keep-logs, no log at all.
+  run_campaign(c, options("none", 1));
+  EXPECT_FALSE(fs::exists(scratch_.path() / "none" / "logs"));
 }
 
 TEST_F(CampaignRunner, ABadCellFailsBeforeAnythingFlies) {

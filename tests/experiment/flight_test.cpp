@@ -9,7 +9,9 @@
 #include <gtest/gtest.h>
 
 #include "core/error.hpp"
+#include "core/helicopter/state.hpp"
 #include "experiment/replay.hpp"
+#include "experiment/result_json.hpp"
 #include "experiment/run_files.hpp"
 #include "experiment/sha256.hpp"
 #include "tests/scratch_directory.hpp"
@@ -89,6 +91,49 @@ TEST(Flight, DisturbanceScalesAndTheInitialOffsetOverrideTheScenario) {
   EXPECT_THROW(Flight(kScenario, controls), Error);
 }
 
+TEST(Flight, TheInitialAttitudeOffsetTurnsTheStartingState) {
+  RunControls controls = seconds(0.2);
+  controls.timing = false;
+  controls.initial_attitude_offset = Eigen::Vector3d(0.1, -0.05, 0.3);
+  const Flight flight(kScenario, controls);
+  const Eigen::VectorXd turned = flight.initial_state() - flight.scenario().initial_state;
+  EXPECT_EQ(turned.segment<3>(heli::kPhi), Eigen::Vector3d(0.1, -0.05, 0.3));
+  EXPECT_TRUE(turned.head<heli::kPhi>().isZero());
+  EXPECT_TRUE(turned.tail(turned.size() - heli::kPsi - 1).isZero());
+  RunControls level = seconds(0.2);
+  level.timing = false;
+  EXPECT_NE(fly(flight, "lqr").summary.cost, fly(Flight(kScenario, level), "lqr").summary.cost);
+  // Beyond the divergence limit from the start: the run ends at once.
+  controls.initial_attitude_offset = Eigen::Vector3d(1.6, 0.0, 0.0);
+  const RunResult rolled = fly(Flight(kScenario, controls), "lqr");
+  EXPECT_EQ(rolled.summary.status, sim::RunStatus::diverged);
+  EXPECT_THAT(rolled.summary.reason, HasSubstr("roll |phi|"));
+  controls.initial_attitude_offset = Eigen::Vector3d(0.0, std::nan(""), 0.0);
+  EXPECT_THROW(Flight(kScenario, controls), Error);
+}
+
+TEST(Flight, TheSpeedScaleFliesTheTrajectoryFasterOverAShorterFlight) {
+  RunControls controls;
+  controls.speed_scale = 2.0;
+  const Flight faster(kScenario, controls);
+  const Flight paper(kScenario);
+  EXPECT_EQ(faster.settings().duration, paper.settings().duration / 2.0);
+  EXPECT_EQ(faster.scenario().trajectory.position(20.0), paper.scenario().trajectory.position(40.0));
+  EXPECT_EQ(faster.settings().wind_gust.onset, paper.settings().wind_gust.onset);
+  // An explicit duration is the flown time: the first 3.75 s of scenario I's takeoff in 3 s.
+  controls.speed_scale = 1.25;
+  controls.duration = 3.0;
+  controls.timing = false;
+  const RunResult run = fly(Flight(kScenario, controls), "lqr");
+  EXPECT_EQ(run.summary.controller_samples, 3000);
+  EXPECT_EQ(run.summary.status, sim::RunStatus::completed) << run.summary.reason;
+  RunControls unscaled = seconds(3.0);
+  unscaled.timing = false;
+  EXPECT_NE(fly(Flight(kScenario, unscaled), "lqr").summary.cost, run.summary.cost);
+  controls.speed_scale = -1.0;
+  EXPECT_THROW(Flight(kScenario, controls), Error);
+}
+
 TEST(Flight, APlantStepThatDoesNotDivideTheControllerPeriodIsAnErrorNamingBoth) {
   RunControls controls;
   controls.dt = 3e-4;
@@ -112,9 +157,14 @@ TEST(Flight, SummaryOnlyKeepsNoLogButTheSameSummary) {
   const RunResult summary_only = fly(Flight(kScenario, controls), "theta-d");
   EXPECT_EQ(logged.log.rows(), 300);
   EXPECT_EQ(summary_only.log.rows(), 0);
-  EXPECT_EQ(summary_only.summary.cost, logged.summary.cost);
-  EXPECT_EQ(summary_only.summary.rms_tracking_error, logged.summary.rms_tracking_error);
-  EXPECT_EQ(summary_only.summary.command_rms, logged.summary.command_rms);
+  // Every figure of the summary, bit for bit (JSON keeps doubles exactly); only the keep_log setting differs.
+  nlohmann::ordered_json with_log = summary_json(logged.summary), without_log = summary_json(summary_only.summary);
+  EXPECT_TRUE(with_log.at("settings").at("keep_log"));
+  EXPECT_FALSE(without_log.at("settings").at("keep_log"));
+  with_log.erase("settings");
+  without_log.erase("settings");
+  EXPECT_EQ(without_log, with_log);
+  EXPECT_GT(without_log.at("cost").at("J").get<double>(), 0.0);
 }
 
 TEST(Flight, ProvenanceSaysWhatProducedTheRun) {

@@ -157,6 +157,21 @@ TEST(Scenario, RunControlsInTheSimulationBlock) {
               HasSubstr("field 'simulation.duration': at most 86400 s (one simulated day)"));
 }
 
+TEST(Scenario, AtTwiceTheSpeedTheFlightCoversTheSamePathInHalfTheTime) {
+  const Scenario scenario = parse_scenario(kHeader + kTakeoff + kHover + "simulation:\n  duration: 10\n", "test.yaml");
+  const Scenario faster = scenario.at_speed(2.0);
+  EXPECT_EQ(faster.duration, 6.0);
+  EXPECT_EQ(faster.trajectory.end_time(), 6.0);
+  EXPECT_EQ(faster.simulation_settings().duration, 5.0);
+  EXPECT_EQ(faster.trajectory.position(1.75), scenario.trajectory.position(3.5));
+  // The physics keeps its clock.
+  EXPECT_EQ(faster.simulation_settings().dt, scenario.simulation_settings().dt);
+  EXPECT_EQ(faster.simulation_settings().wind_gust.onset, scenario.simulation_settings().wind_gust.onset);
+  const Scenario slower = parse_scenario(kHeader + kTakeoff + kHover, "test.yaml").at_speed(0.5);
+  EXPECT_EQ(slower.simulation_settings().duration, 24.0);
+  EXPECT_THROW(scenario.at_speed(0.0), Error);
+}
+
 TEST(Scenario, InitialPositionStartsTheCommand) {
   const Scenario scenario =
       parse_scenario("duration: 5\ninitial_state:\n  position: [1, 2, 3.5]\nphases:\n"

@@ -150,6 +150,35 @@ TEST(Trajectory, SinusoidReturnsToItsStartAfterWholePeriods) {
   expect_near(trajectory.position(20.0), {0.0, 0.0, -3.5}, 1e-9);
 }
 
+TEST(Trajectory, ATimeScaledTrajectoryFliesTheSamePathFaster) {
+  PhasedTrajectory trajectory = scenario_one();
+  trajectory.append("wave", 95.0, Sinusoid{{0.0, 1.0, -0.5}, 4.0});
+  trajectory.append("accelerate", 100.0, Accelerate{Eigen::Vector3d::UnitX(), 0.0, 3.0});
+  trajectory.append("step", 102.0, Step{{10.0, 0.0, -3.0}});
+  trajectory.append("blend", 105.0, Blend{{10.0, 0.0, -5.0}});
+  trajectory.append("circle", 125.0, Circle{15.0, 20.0, 2.0, false});
+  for (const double s : {0.5, 1.0, 1.3, 2.0}) {
+    SCOPED_TRACE("speed scale " + std::to_string(s));
+    const PhasedTrajectory faster = trajectory.time_scaled(s);
+    ASSERT_EQ(faster.phases().size(), trajectory.phases().size());
+    EXPECT_DOUBLE_EQ(faster.end_time(), 125.0 / s);
+    // r_s(t) = r(s t), away from the step's jump, with velocity s times the original's.
+    for (double t = 0.05; t < 125.0; t += 0.37) {
+      if (std::abs(t - 100.0) < 1e-3) continue;
+      expect_near(faster.position(t / s), trajectory.position(t), 1e-9);
+      if (std::abs(t - 100.0) < 0.01) continue;
+      expect_near(velocity(faster, t / s), s * velocity(trajectory, t), 1e-5 * std::max(1.0, s));
+    }
+    expect_near(faster.position(200.0 / s), trajectory.position(200.0), 1e-9);
+  }
+  // The figure 8's crossing speed half way (t = 37 s), ω sqrt(A_x² + 4 A_y²), doubles at twice the speed.
+  const double omega = 2.0 * kPi / 50.0;
+  EXPECT_NEAR(velocity(trajectory.time_scaled(2.0), 37.0 / 2.0).norm(), 2.0 * omega * std::sqrt(64.0 + 64.0), 1e-6);
+  EXPECT_THROW(trajectory.time_scaled(0.0), Error);
+  EXPECT_THROW(trajectory.time_scaled(-1.0), Error);
+  EXPECT_THROW(trajectory.time_scaled(std::nan("")), Error);
+}
+
 TEST(Trajectory, RejectsPhasesThatDoNotMoveForwardAndBadPeriods) {
   PhasedTrajectory trajectory;
   trajectory.append("hover", 5.0, Hold{});
