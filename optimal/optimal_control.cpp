@@ -1,7 +1,6 @@
 #include "optimal/optimal_control.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <string>
 #include <vector>
 
@@ -174,33 +173,34 @@ class ShootingNlp final : public Ipopt::TNLP {
     u_ = Eigen::Map<const Eigen::VectorXd>(x + node_offset(k) + d_, m_);
   }
 
-  // The intervals' ends and costs at x, once per point (false where the plant has no value).
-  bool values(const Ipopt::Number* x, bool new_x) {
+  // Runs `fill` on every interval at x once per point (Ipopt's new_x says when x changed); false
+  // where the plant has no value there.
+  template <class Fill>
+  bool once_per_point(const Ipopt::Number* x, bool new_x, bool& have, const Fill& fill) {
     if (new_x) have_values_ = have_derivatives_ = false;
-    if (have_values_) return true;
+    if (have) return true;
     try {
       for (int k = 0; k < intervals_; ++k) {
         unpack(x, k);
-        costs_[static_cast<std::size_t>(k)] = interval_.propagate(k, node_, u_, next_[static_cast<std::size_t>(k)]);
+        fill(static_cast<std::size_t>(k));
       }
     } catch (const Error&) {
       return false;
     }
-    return have_values_ = true;
+    return have = true;
+  }
+
+  // The intervals' ends and costs.
+  bool values(const Ipopt::Number* x, bool new_x) {
+    return once_per_point(x, new_x, have_values_, [this](std::size_t k) {
+      costs_[k] = interval_.propagate(static_cast<int>(k), node_, u_, next_[k]);
+    });
   }
 
   bool derivatives(const Ipopt::Number* x, bool new_x) {
-    if (new_x) have_values_ = have_derivatives_ = false;
-    if (have_derivatives_) return true;
-    try {
-      for (int k = 0; k < intervals_; ++k) {
-        unpack(x, k);
-        interval_.jacobian(k, node_, u_, derivatives_[static_cast<std::size_t>(k)]);
-      }
-    } catch (const Error&) {
-      return false;
-    }
-    return have_derivatives_ = true;
+    return once_per_point(x, new_x, have_derivatives_, [this](std::size_t k) {
+      interval_.jacobian(static_cast<int>(k), node_, u_, derivatives_[k]);
+    });
   }
 
   const OptimalControlProblem& problem_;

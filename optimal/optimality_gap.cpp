@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <limits>
 
 #include "core/error.hpp"
 #include "core/helicopter/state.hpp"
@@ -33,7 +32,9 @@ int periods_in(double seconds, double period, const char* what) {
   return whole;
 }
 
-OptimalControlProblem problem_of(const Flight& flight, const OptimalityOptions& options) {
+}  // namespace
+
+OptimalControlProblem optimality_problem(const Flight& flight, const OptimalityOptions& options) {
   const sim::SimulationSettings& s = flight.settings();
   const sim::NoiseSettings& noise = s.noise;
   if (s.parameter_uncertainty || s.wind_gust.enabled || noise.measurement || noise.actuator || noise.wind_component ||
@@ -67,6 +68,8 @@ OptimalControlProblem problem_of(const Flight& flight, const OptimalityOptions& 
   problem.validate();
   return problem;
 }
+
+namespace {
 
 const RunResult& warm_start_flight(const std::vector<RunResult>& flights, const std::string& label) {
   const RunResult* chosen = nullptr;
@@ -141,13 +144,13 @@ RunResult optimum_run(const Flight& flight, const OptimalControlProblem& problem
 }  // namespace
 
 double OptimalityGap::gap_percent(const RunResult& flight) const {
-  return 100.0 * (flight.summary.cost - solution.cost) / solution.cost;
+  return 100.0 * (flight.summary.cost - optimum.summary.cost) / optimum.summary.cost;
 }
 
 OptimalityGap optimality_gap(const Flight& flight, std::vector<PreparedController>& controllers,
                              const OptimalityOptions& options, Progress* progress) {
   OptimalityGap gap;
-  gap.problem = problem_of(flight, options);
+  gap.problem = optimality_problem(flight, options);
   if (!options.warm_start.empty() &&
       std::none_of(controllers.begin(), controllers.end(),
                    [&](const PreparedController& c) { return c.spec.label == options.warm_start; })) {

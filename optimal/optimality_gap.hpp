@@ -25,17 +25,21 @@ struct OptimalityGap {
   std::string warm_start;  // the label the solve started from
   RunResult optimum;
 
-  // 100 (J_flight − J*) / J*: how much more the flight costs than the optimum, in percent.
+  // 100 (J_flight − J*) / J*, J* as the run metrics sum the optimum's samples (the flights' way):
+  // how much more the flight costs than the optimum, in percent.
   double gap_percent(const RunResult& flight) const;
 };
 
+// The optimal control problem of `flight`'s scenario over its duration, priced as simulate()
+// prices J, on the controllers' model. Throws thetad::Error when the flight is not ideal, has
+// actuator limits, does not log every sample, or its duration is not a whole number of control
+// intervals (nothing needs to fly to find out).
+OptimalControlProblem optimality_problem(const Flight& flight, const OptimalityOptions& options);
+
 // Flies every controller through `flight` over its duration, then solves the optimal control
-// problem on the controllers' model (the helicopter: J priced as simulate() prices it) from the
-// warm-start flight by multiple shooting (solve_optimal_control). The flight must be ideal (no
-// uncertainty, noise or wind: the optimum is of the nominal plant), without actuator limits, and
-// log every sample; its duration must be a whole number of control intervals. Throws
-// thetad::Error naming what is wrong before anything flies, and when no flight completed to warm
-// start from (or the named one did not).
+// problem (optimality_problem) from the warm-start flight by multiple shooting
+// (solve_optimal_control). Throws thetad::Error naming what is wrong before anything flies, and
+// when no flight completed to warm start from (or the named one did not).
 OptimalityGap optimality_gap(const Flight& flight, std::vector<PreparedController>& controllers,
                              const OptimalityOptions& options, Progress* progress = nullptr);
 

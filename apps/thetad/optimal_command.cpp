@@ -52,6 +52,12 @@ int run_optimal(const OptimalArguments& arguments) {
   controls.summary_only = false;
   if (arguments.no_timing) controls.timing = false;
   const Flight flight(arguments.scenario, controls);
+  OptimalityOptions options;
+  options.control_interval = arguments.control_interval;
+  options.warm_start = arguments.warm_start;
+  options.solver.ipopt.max_iterations = arguments.max_iterations;
+  options.solver.ipopt.tolerance = arguments.tolerance;
+  optimality_problem(flight, options);  // a horizon or interval off the grid fails before the controllers are built
   std::vector<PreparedController> controllers;
   for (const auto& spec : parse_controller_specs(arguments.controllers, arguments.settings))
     controllers.push_back(flight.prepare(spec));
@@ -66,11 +72,6 @@ int run_optimal(const OptimalArguments& arguments) {
     if (error) throw Error("cannot remove the old " + stale.string() + ": " + error.message());
   }
 
-  OptimalityOptions options;
-  options.control_interval = arguments.control_interval;
-  options.warm_start = arguments.warm_start;
-  options.solver.ipopt.max_iterations = arguments.max_iterations;
-  options.solver.ipopt.tolerance = arguments.tolerance;
   Progress progress(Progress::mode_for_stderr(arguments.quiet));
   OptimalityGap gap = optimality_gap(flight, controllers, options, &progress);
 
@@ -99,8 +100,9 @@ int run_optimal(const OptimalArguments& arguments) {
                     {"cost", flight_run.summary.cost},
                     {"gap_percent", completed ? nlohmann::ordered_json(gap.gap_percent(flight_run)) : nullptr}});
   }
+  const double optimal_cost = gap.optimum.summary.cost;
   std::printf("%-16s %-22s %16.8g %12s\n", "optimal", optimum.outcome.converged ? "converged" : "not converged",
-              optimum.cost, "0");
+              optimal_cost, "0");
 
   write_file_atomically(comparison_file, comparison_json(flight, runs, files).dump(2) + "\n");
   nlohmann::ordered_json result = {
@@ -114,7 +116,7 @@ int run_optimal(const OptimalArguments& arguments) {
       {"ipopt_converged", optimum.outcome.converged},
       {"ipopt_iterations", optimum.iterations},
       {"max_defect", optimum.constraint_violation},
-      {"optimal_cost", optimum.cost},
+      {"optimal_cost", optimal_cost},
       {"optimal_result", files.back().json.filename().string()},
       {"controllers", gaps},
       {"provenance", to_json(gap.optimum.provenance)}};
