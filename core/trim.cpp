@@ -5,14 +5,13 @@
 #include <cmath>
 #include <iomanip>
 #include <limits>
-#include <mutex>
 #include <sstream>
 
 #include <Eigen/Geometry>
 
-#include "IpIpoptApplication.hpp"
 #include "IpTNLP.hpp"
 #include "core/error.hpp"
+#include "core/ipopt_solve.hpp"
 
 namespace thetad {
 
@@ -64,31 +63,6 @@ Eigen::Matrix3d body_to_ned(double phi, double theta, double psi) {  // R(Theta)
   return (Eigen::AngleAxisd(psi, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(theta, Eigen::Vector3d::UnitY()) *
           Eigen::AngleAxisd(phi, Eigen::Vector3d::UnitX()))
       .toRotationMatrix();
-}
-
-const char* status_name(Ipopt::ApplicationReturnStatus status) {
-  switch (status) {
-    case Ipopt::Solve_Succeeded: return "Solve_Succeeded";
-    case Ipopt::Solved_To_Acceptable_Level: return "Solved_To_Acceptable_Level";
-    case Ipopt::Infeasible_Problem_Detected: return "Infeasible_Problem_Detected";
-    case Ipopt::Search_Direction_Becomes_Too_Small: return "Search_Direction_Becomes_Too_Small";
-    case Ipopt::Diverging_Iterates: return "Diverging_Iterates";
-    case Ipopt::User_Requested_Stop: return "User_Requested_Stop";
-    case Ipopt::Feasible_Point_Found: return "Feasible_Point_Found";
-    case Ipopt::Maximum_Iterations_Exceeded: return "Maximum_Iterations_Exceeded";
-    case Ipopt::Restoration_Failed: return "Restoration_Failed";
-    case Ipopt::Error_In_Step_Computation: return "Error_In_Step_Computation";
-    case Ipopt::Maximum_CpuTime_Exceeded: return "Maximum_CpuTime_Exceeded";
-    case Ipopt::Not_Enough_Degrees_Of_Freedom: return "Not_Enough_Degrees_Of_Freedom";
-    case Ipopt::Invalid_Problem_Definition: return "Invalid_Problem_Definition";
-    case Ipopt::Invalid_Option: return "Invalid_Option";
-    case Ipopt::Invalid_Number_Detected: return "Invalid_Number_Detected";
-    case Ipopt::Unrecoverable_Exception: return "Unrecoverable_Exception";
-    case Ipopt::NonIpopt_Exception_Thrown: return "NonIpopt_Exception_Thrown";
-    case Ipopt::Insufficient_Memory: return "Insufficient_Memory";
-    case Ipopt::Internal_Error: return "Internal_Error";
-  }
-  return "unknown Ipopt status";
 }
 
 std::string to_text(double value) {
@@ -283,9 +257,6 @@ class TrimNlp final : public Ipopt::TNLP {
   bool has_value_ = false;
 };
 
-// Ipopt with MUMPS keeps global state: one solve at a time in the whole process.
-std::mutex ipopt_mutex;
-
 std::string describe(const TrimCondition& c) {
   std::ostringstream out;
   // "+ 0.0" prints a negative zero (a zero climb rate negated) as 0.
@@ -314,26 +285,16 @@ Trim find_trim(const heli::Helicopter& plant, const TrimCondition& condition, co
   }
 
   Ipopt::SmartPtr<TrimNlp> nlp = new TrimNlp(equations, start);
-  Ipopt::ApplicationReturnStatus status;
-  {
-    const std::lock_guard<std::mutex> lock(ipopt_mutex);
-    Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
-    auto& ipopt_options = *app->Options();
-    ipopt_options.SetIntegerValue("print_level", 0);
-    ipopt_options.SetStringValue("sb", "yes");
-    ipopt_options.SetStringValue("linear_solver", "mumps");
-    ipopt_options.SetStringValue("hessian_approximation", "limited-memory");
-    ipopt_options.SetIntegerValue("max_iter", options.max_iterations);
-    // Converge well below residual_tolerance: constraints are accelerations (m/s^2, rad/s^2)
-    // whose rounding floor is ~1e-13.
-    ipopt_options.SetNumericValue("tol", 1e-12);
-    ipopt_options.SetNumericValue("constr_viol_tol", 1e-11);
-    status = app->Initialize("");  // "": no ipopt.opt from the working directory
-    if (status == Ipopt::Solve_Succeeded) status = app->OptimizeTNLP(nlp);
-  }
+  IpoptRun run;
+  run.max_iterations = options.max_iterations;
+  // Converge well below residual_tolerance: constraints are accelerations (m/s^2, rad/s^2)
+  // whose rounding floor is ~1e-13.
+  run.tolerance = 1e-12;
+  run.constraint_tolerance = 1e-11;
+  const IpoptOutcome outcome = solve_with_ipopt(*nlp, run);
 
   const std::string what = describe(condition);
-  std::string report = std::string("status ") + status_name(status) + ", " + std::to_string(nlp->iterations()) +
+  std::string report = "status " + outcome.status + ", " + std::to_string(nlp->iterations()) +
                        " iterations, ";
   if (!nlp->finalized() || !nlp->has_value()) {
     throw Error(what + ": Ipopt did not converge (" + report +
@@ -341,7 +302,7 @@ Trim find_trim(const heli::Helicopter& plant, const TrimCondition& condition, co
                 equations.last_error() + ")");
   }
   report += "final constraint violation " + to_text(nlp->constraint_violation());
-  if (status != Ipopt::Solve_Succeeded && status != Ipopt::Solved_To_Acceptable_Level) {
+  if (!outcome.converged) {
     throw Error(what + ": Ipopt did not converge (" + report + ")");
   }
 
@@ -352,7 +313,7 @@ Trim find_trim(const heli::Helicopter& plant, const TrimCondition& condition, co
   xdot.segment<3>(kXp) -= condition.velocity_ned;
   trim.residual = xdot.head(kPhysicalStateDim).norm();
   trim.rotor_speed = plant.rotor_speed(trim.state, trim.input[kTmr]);
-  trim.solver_status = status_name(status);
+  trim.solver_status = outcome.status;
   trim.iterations = nlp->iterations();
   if (!(trim.residual <= options.residual_tolerance)) {
     throw Error(what + ": Ipopt's solution is not an equilibrium (" + report + ", ||f|| = " +

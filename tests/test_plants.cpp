@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <random>
+#include <utility>
 
 #include "core/error.hpp"
 
@@ -63,6 +64,22 @@ void RandomSdcPlant::sdc(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen
                          Eigen::Ref<Eigen::MatrixXd> F, Eigen::Ref<Eigen::MatrixXd> B) const {
   F = A_ + x[0] * C_ + x[1] * x[1] * D_ + input_coupling_ * std::tanh(u[0]) * H_;
   B = G_ + x[0] * E_;
+}
+
+LinearPlant::LinearPlant(Eigen::MatrixXd A, Eigen::MatrixXd B) : A_(std::move(A)), B_(std::move(B)) {
+  if (A_.rows() != A_.cols() || B_.rows() != A_.rows()) throw Error("LinearPlant: A must be n x n and B n x m");
+}
+
+void LinearPlant::f(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& u,
+                    Eigen::Ref<Eigen::VectorXd> xdot) const {
+  xdot.noalias() = A_ * x;
+  xdot.noalias() += B_ * u;
+}
+
+void LinearPlant::sdc(const Eigen::Ref<const Eigen::VectorXd>&, const Eigen::Ref<const Eigen::VectorXd>&,
+                      Eigen::Ref<Eigen::MatrixXd> F, Eigen::Ref<Eigen::MatrixXd> B) const {
+  F = A_;
+  B = B_;
 }
 
 }  // namespace thetad

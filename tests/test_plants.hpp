@@ -1,7 +1,7 @@
 #pragma once
 
 // Small SDC plants for the controller tests and the scaling benchmark: one whose SDRE solution is
-// known in closed form, and a generic n-dimensional one. Neither knows anything about helicopters;
+// known in closed form, a generic n-dimensional one, and a linear one. Neither knows anything about helicopters;
 // both satisfy F(x; u) x + B(x; u) u == f(x, u) exactly (f is defined through F and B).
 
 #include <cstdint>
@@ -71,6 +71,28 @@ class RandomSdcPlant final : public SdcPlant {
  private:
   Eigen::MatrixXd A_, C_, D_, H_, G_, E_;
   double input_coupling_;
+};
+
+// A linear plant xdot = A x + B u (F = A, B constant): its finite-horizon LQR problem has an exact
+// discrete-time solution, against which the optimal control transcription is checked.
+class LinearPlant final : public SdcPlant {
+ public:
+  LinearPlant(Eigen::MatrixXd A, Eigen::MatrixXd B);
+
+  int state_dim() const override { return static_cast<int>(A_.rows()); }
+  int input_dim() const override { return static_cast<int>(B_.cols()); }
+  const Eigen::MatrixXd& A() const { return A_; }
+  const Eigen::MatrixXd& B() const { return B_; }
+
+  using SdcPlant::f;
+  using SdcPlant::sdc;
+  void f(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& u,
+         Eigen::Ref<Eigen::VectorXd> xdot) const override;
+  void sdc(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& u,
+           Eigen::Ref<Eigen::MatrixXd> F, Eigen::Ref<Eigen::MatrixXd> B) const override;
+
+ private:
+  Eigen::MatrixXd A_, B_;
 };
 
 }  // namespace thetad

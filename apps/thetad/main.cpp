@@ -12,6 +12,7 @@
 #include "apps/thetad/demo_command.hpp"
 #include "apps/thetad/plot_command.hpp"
 #include "apps/thetad/design_lqr_command.hpp"
+#include "apps/thetad/optimal_command.hpp"
 #include "apps/thetad/run_command.hpp"
 #include "apps/thetad/tune_command.hpp"
 #include "experiment/build_info.hpp"
@@ -55,6 +56,8 @@ int main(int argc, char** argv) {
   auto* bench = thetad::app::add_bench_command(app, bench_arguments);
   thetad::app::CampaignArguments campaign_arguments;
   auto* campaign = thetad::app::add_campaign_command(app, campaign_arguments);
+  thetad::app::OptimalArguments optimal_arguments;
+  auto* optimal = thetad::app::add_optimal_command(app, optimal_arguments);
 
   try {
     app.parse(argc, argv);
@@ -74,6 +77,7 @@ int main(int argc, char** argv) {
     if (*design_lqr) return thetad::app::run_design_lqr(design_lqr_arguments);
     if (*bench) return thetad::app::run_bench(bench_arguments);
     if (*campaign) return thetad::app::run_campaign_command(campaign_arguments);
+    if (*optimal) return thetad::app::run_optimal(optimal_arguments);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "thetad: error: %s\n", e.what());
     return 1;

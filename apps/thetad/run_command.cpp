@@ -108,7 +108,7 @@ int run_plant(const RunArguments& arguments) {
 void add_flight_options(CLI::App& command, FlightOptions& options, bool scenario_required) {
   auto* scenario = command.add_option("--scenario", options.scenario,
                                       "Scenario file (YAML, see docs/scenarios.md) or the name of a shipped one "
-                                      "(scenario-1, scenario-2, hover-step, fast-forward)");
+                                      "(scenario-1, scenario-2, hover-step, hover-to-hover, fast-forward)");
   if (scenario_required) scenario->required();
   command.add_option("--settings", options.settings,
                      "Controller settings (YAML): a map from controller name to its settings block");

@@ -1,0 +1,34 @@
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+namespace thetad::app {
+
+struct OptimalArguments {
+  std::string scenario;
+  double horizon = 0.0;
+  double control_interval = 0.05;
+  std::vector<std::string> controllers{"theta-d", "sdre", "lqr", "lqr-scheduled"};
+  std::filesystem::path settings;
+  std::string warm_start;
+  int max_iterations = 1000;
+  double tolerance = 1e-6;
+  bool no_timing = false;
+  bool quiet = false;
+  std::filesystem::path out;
+};
+CLI::App* add_optimal_command(CLI::App& app, OptimalArguments& arguments);
+
+// thetad optimal: the controllers flown ideal over the first `horizon` seconds of a scenario, the
+// optimal control problem with their cost solved from the cheapest flight (optimal/optimality_gap),
+// a table of each J and its gap to the optimum on stdout; <out>/<label>.csv and .json per
+// controller and for the optimum (label "optimal"), <out>/comparison.json (so that `thetad plot`
+// draws them together) and <out>/optimality.json (the gaps). Exit code 0 when Ipopt converged, 3
+// when it did not.
+int run_optimal(const OptimalArguments& arguments);
+
+}  // namespace thetad::app

@@ -1,0 +1,47 @@
+#pragma once
+
+#include <optional>
+
+#include <Eigen/Core>
+
+#include "core/control_law.hpp"
+#include "core/sdc_plant.hpp"
+
+namespace thetad {
+
+// A finite-horizon optimal control problem on a plant, priced as a run's cost J is priced:
+//
+//   min over u   J = 1/2 sum_k (v_kᵀ Q v_k + u_kᵀ R u_k) T_c     (k = 0 .. samples − 1)
+//   subject to   the plant's RK4 steps of dt, u held between samples, from initial_state,
+//
+// with v_k the plant's tracking vector at controller sample k (SdcPlant::tracking_vector, the
+// reference's integral by the PositionIntegral rule) and Q, R diagonal: the J of
+// sim::RunSummary::cost and sim::PlantRun::cost, sample for sample. The input is further held over
+// shooting intervals of `interval_periods` controller periods: the transcription's unknowns.
+struct OptimalControlProblem {
+  const SdcPlant* plant = nullptr;
+  const ReferenceTrajectory* reference = nullptr;
+  Eigen::VectorXd initial_state;
+  Eigen::VectorXd state_weights;  // diagonal of Q (n)
+  Eigen::VectorXd input_weights;  // diagonal of R (m)
+  double dt = 1e-3;               // RK4 step (s): the simulator's
+  int controller_period_steps = 1;  // T_c = dt * controller_period_steps: where J samples
+  int interval_periods = 1;       // controller periods per shooting interval (u held over it)
+  int intervals = 1;              // the horizon is intervals * interval_periods * T_c
+  // The helicopter's simulate() prices the tracking vector's three integral entries (from this
+  // index) with the left-rectangle integral of the position error x[0..2] − reference, not with
+  // the plant's own integral states: set it to heli::kXi to price as simulate() does. Unset: the
+  // tracking vector of the state itself, as simulate_plant() prices it.
+  std::optional<int> sampled_position_integral;
+
+  double controller_period() const { return dt * controller_period_steps; }
+  int samples() const { return intervals * interval_periods; }
+  double horizon() const { return samples() * controller_period(); }
+  // The entries of a shooting node: the plant state, then the sampled integral (3) when priced.
+  int node_dim() const;
+
+  // Throws thetad::Error naming the first field that is missing, mis-sized or out of range.
+  void validate() const;
+};
+
+}  // namespace thetad

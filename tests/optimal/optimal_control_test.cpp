@@ -1,0 +1,173 @@
+// The multiple-shooting transcription against what is known exactly on a linear plant: the
+// discrete-time finite-horizon LQR on the same RK4 discretisation, computed here on its own.
+#include "optimal/optimal_control.hpp"
+
+#include <Eigen/Cholesky>
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "core/sim/plant_simulator.hpp"
+#include "optimal/shooting_interval.hpp"
+#include "tests/error_message.hpp"
+#include "tests/test_plants.hpp"
+
+namespace thetad {
+namespace {
+
+using ::testing::HasSubstr;
+
+const FixedPosition kOrigin(Eigen::Vector3d::Zero());
+
+// An unstable, lightly coupled 3-state, 2-input plant.
+LinearPlant small_plant() {
+  Eigen::MatrixXd A(3, 3), B(3, 2);
+  A << 0.2, 1.0, 0.0,  //
+      -1.0, -0.3, 0.5,  //
+      0.1, 0.0, -0.8;
+  B << 0.0, 0.3,  //
+      1.0, 0.0,   //
+      0.2, 1.0;
+  return {A, B};
+}
+
+OptimalControlProblem problem_for(const LinearPlant& plant) {
+  OptimalControlProblem problem;
+  problem.plant = &plant;
+  problem.reference = &kOrigin;
+  problem.initial_state = Eigen::Vector3d(1.0, -0.5, 0.8);
+  problem.state_weights = Eigen::Vector3d(2.0, 1.0, 0.5);
+  problem.input_weights = Eigen::Vector2d(0.3, 1.5);
+  problem.dt = 0.01;
+  problem.controller_period_steps = 2;  // T_c = 20 ms
+  problem.interval_periods = 3;         // u held 60 ms
+  problem.intervals = 25;               // 1.5 s
+  return problem;
+}
+
+// One RK4 step of xdot = A x + B u with u held is x+ = Φ x + Γ u, Φ and Γ the degree-4 Taylor
+// polynomials (classical RK4 is exact to that order on a linear system).
+struct Discrete {
+  Eigen::MatrixXd Phi, Gamma;
+};
+
+Discrete rk4_step(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, double h) {
+  const Eigen::Index n = A.rows();
+  const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(n, n), A2 = A * A, A3 = A2 * A;
+  return {I + h * A + h * h / 2 * A2 + h * h * h / 6 * A3 + h * h * h * h / 24 * A3 * A,
+          (h * I + h * h / 2 * A + h * h * h / 6 * A2 + h * h * h * h / 24 * A3) * B};
+}
+
+// x after `steps` steps of `one` from x with u held: [Φ^steps, Γ_steps].
+Discrete repeat(const Discrete& one, int steps) {
+  Discrete many{Eigen::MatrixXd::Identity(one.Phi.rows(), one.Phi.cols()), Eigen::MatrixXd::Zero(one.Gamma.rows(), one.Gamma.cols())};
+  for (int i = 0; i < steps; ++i) many = {one.Phi * many.Phi, one.Phi * many.Gamma + one.Gamma};
+  return many;
+}
+
+// The finite-horizon LQR over the shooting intervals: an interval's cost is the quadratic
+// ½ [x; u]ᵀ M [x; u] of its samples' ½ (xᵀQx + uᵀRu) T_c, and it moves x by [Φ^K, Γ_K]; the
+// backward Riccati recursion with cross terms from P_N = 0 gives the optimum ½ x0ᵀ P_0 x0.
+double lqr_cost(const LinearPlant& plant, const OptimalControlProblem& p) {
+  const Eigen::Index n = plant.state_dim(), m = plant.input_dim();
+  const Discrete sample = repeat(rk4_step(plant.A(), plant.B(), p.dt), p.controller_period_steps);
+  const double period = p.controller_period();
+  Eigen::MatrixXd M = Eigen::MatrixXd::Zero(n + m, n + m), map(n, n + m);
+  Eigen::MatrixXd QR = Eigen::MatrixXd::Zero(n + m, n + m);
+  QR.diagonal() << p.state_weights, p.input_weights;
+  Discrete reached{Eigen::MatrixXd::Identity(n, n), Eigen::MatrixXd::Zero(n, m)};
+  for (int j = 0; j < p.interval_periods; ++j) {
+    Eigen::MatrixXd z = Eigen::MatrixXd::Zero(n + m, n + m);  // [x_j; u] in terms of [x; u]
+    z.topLeftCorner(n, n) = reached.Phi;
+    z.topRightCorner(n, m) = reached.Gamma;
+    z.bottomRightCorner(m, m).setIdentity();
+    M += period * z.transpose() * QR * z;
+    reached = {sample.Phi * reached.Phi, sample.Phi * reached.Gamma + sample.Gamma};
+  }
+  Eigen::MatrixXd P = Eigen::MatrixXd::Zero(n, n);
+  for (int k = p.intervals - 1; k >= 0; --k) {
+    const Eigen::MatrixXd Huu = M.bottomRightCorner(m, m) + reached.Gamma.transpose() * P * reached.Gamma;
+    const Eigen::MatrixXd Hux = M.bottomLeftCorner(m, n) + reached.Gamma.transpose() * P * reached.Phi;
+    P = M.topLeftCorner(n, n) + reached.Phi.transpose() * P * reached.Phi - Hux.transpose() * Huu.ldlt().solve(Hux);
+  }
+  return 0.5 * p.initial_state.dot(P * p.initial_state);
+}
+
+// A do-nothing "flight" to start from: x0 held, u = 0.
+ShootingTrajectory idle_start(const OptimalControlProblem& p) {
+  const Eigen::MatrixXd states = p.initial_state.transpose().replicate(p.samples(), 1);
+  return shooting_guess(p, states, Eigen::MatrixXd::Zero(p.samples(), p.plant->input_dim()));
+}
+
+TEST(OptimalControl, OnALinearPlantCostsWhatTheFiniteHorizonLqrSays) {
+  const LinearPlant plant = small_plant();
+  const OptimalControlProblem problem = problem_for(plant);
+  const OptimalControlSolution solution = solve_optimal_control(problem, idle_start(problem));
+  ASSERT_TRUE(solution.outcome.converged) << solution.outcome.status;
+  const double expected = lqr_cost(plant, problem);
+  EXPECT_NEAR(solution.cost, expected, 1e-6 * expected);
+  EXPECT_LE(solution.constraint_violation, 1e-8);
+  EXPECT_EQ(solution.samples.rows(), problem.samples());
+  EXPECT_EQ(solution.samples.row(0).segment(1, 3), problem.initial_state.transpose());
+}
+
+TEST(OptimalControl, IntervalDerivativesAreTheDiscreteMapOnALinearPlant) {
+  const LinearPlant plant = small_plant();
+  const OptimalControlProblem problem = problem_for(plant);
+  ShootingInterval interval(problem);
+  Eigen::MatrixXd derivative;
+  interval.jacobian(4, problem.initial_state, Eigen::Vector2d(0.7, -0.2), derivative);
+  const Discrete exact =
+      repeat(rk4_step(plant.A(), plant.B(), problem.dt), problem.controller_period_steps * problem.interval_periods);
+  EXPECT_LE((derivative.topLeftCorner(3, 3) - exact.Phi).cwiseAbs().maxCoeff(), 1e-10);
+  EXPECT_LE((derivative.topRightCorner(3, 2) - exact.Gamma).cwiseAbs().maxCoeff(), 1e-10);
+}
+
+// The objective is J as the plant simulator prices a flight, sample for sample.
+TEST(OptimalControl, PricesAFlightAsTheSimulatorDoes) {
+  const LinearPlant plant = small_plant();
+  OptimalControlProblem problem = problem_for(plant);
+  problem.interval_periods = 1;
+  problem.intervals = 40;
+  problem.state_weights = plant.design_defaults().state_weights;
+  problem.input_weights = plant.design_defaults().input_weights;
+  ConstantInput law(Eigen::Vector2d(0.4, -0.3));
+  sim::SimulationSettings settings;
+  settings.dt = problem.dt;
+  settings.controller_period_steps = problem.controller_period_steps;
+  settings.duration = problem.horizon();
+  const sim::PlantRun run = sim::simulate_plant(law, plant, kOrigin, problem.initial_state, settings);
+  ASSERT_EQ(run.status, sim::RunStatus::completed);
+  const ShootingTrajectory nodes = shooting_guess(problem, run.log.middleCols(1, 3), run.log.rightCols(2));
+  ShootingInterval interval(problem);
+  Eigen::VectorXd next(3);
+  double cost = 0.0;
+  for (int k = 0; k < problem.intervals; ++k)
+    cost += interval.propagate(k, nodes.nodes.row(k).transpose(), nodes.inputs.row(k).transpose(), next);
+  EXPECT_NEAR(cost, run.cost, 1e-12 * run.cost);
+}
+
+TEST(OptimalControl, BadProblemsAndStartsAreRefusedClearly) {
+  const LinearPlant plant = small_plant();
+  OptimalControlProblem problem = problem_for(plant);
+  problem.state_weights = Eigen::Vector2d(1.0, 1.0);
+  EXPECT_THAT(testing::error_message([&] { problem.validate(); }),
+              HasSubstr("state_weights has 2 entries, the plant needs 3"));
+  problem = problem_for(plant);
+  problem.interval_periods = 0;
+  EXPECT_THAT(testing::error_message([&] { problem.validate(); }), HasSubstr("interval_periods must be at least 1"));
+  problem = problem_for(plant);
+  problem.sampled_position_integral = 1;
+  EXPECT_THAT(testing::error_message([&] { problem.validate(); }), HasSubstr("sampled_position_integral 1"));
+  problem = problem_for(plant);
+  EXPECT_THAT(testing::error_message([&] {
+                shooting_guess(problem, Eigen::MatrixXd::Zero(10, 3), Eigen::MatrixXd::Zero(10, 2));
+              }),
+              HasSubstr("the warm start has 10 samples of 3 states"));
+  ShootingTrajectory start = idle_start(problem);
+  start.inputs.conservativeResize(3, Eigen::NoChange);
+  EXPECT_THAT(testing::error_message([&] { solve_optimal_control(problem, start); }),
+              HasSubstr("the start's inputs is 3x2, expected 25x2"));
+}
+
+}  // namespace
+}  // namespace thetad
