@@ -115,11 +115,13 @@ tuning::FitOptions with_progress(tuning::FitOptions options, bool global, Progre
 tuning::FitResult search(const TuneArguments& a, const Flight& flight, const YAML::Node& settings, const YAML::Node& base,
                          const std::optional<tuning::TuningRecord>& reused, tuning::DrawFlights& draws,
                          tuning::TuningReport& report, Progress& progress) {
-  const std::string& algorithm = report.options.algorithm;
-  const tuning::FitOptions options =
-      with_progress(report.options, algorithm.rfind("GN_", 0) == 0, progress, "fit (" + a.objective + ", " + algorithm + "):");
+  // Started once the record and the expansion are ready: one progress task at a time.
+  const auto options = [&] {
+    const std::string& algorithm = report.options.algorithm;
+    return with_progress(report.options, algorithm.rfind("GN_", 0) == 0, progress, "fit (" + a.objective + ", " + algorithm + "):");
+  };
   if (report.objective.objective == tuning::Objective::closed_loop) {
-    const tuning::FitResult fit = tuning::fit(draws, report.objective.training_seeds, report.objective.metric, options);
+    const tuning::FitResult fit = tuning::fit(draws, report.objective.training_seeds, report.objective.metric, options());
     report.figure = std::string("mean_") + (report.objective.metric == tuning::Metric::cost ? "cost" : "rms_error_m");
     report.figure_default = fit.start_residual;
     report.figure_tuned = fit.residual;
@@ -139,7 +141,7 @@ tuning::FitResult search(const TuneArguments& a, const Flight& flight, const YAM
   if (report.objective.objective == tuning::Objective::sigma) {
     const tuning::SigmaMatch match(series, record, a.threads);
     report.setup_seconds = seconds_since(setup);
-    const tuning::FitResult fit = tuning::fit(match, report.objective.weighting, options);
+    const tuning::FitResult fit = tuning::fit(match, report.objective.weighting, options());
     report.figure = "rms_sigma_error";
     report.figure_default = std::sqrt(fit.start_residual / samples);
     report.figure_tuned = std::sqrt(fit.residual / samples);
@@ -149,7 +151,7 @@ tuning::FitResult search(const TuneArguments& a, const Flight& flight, const YAM
   const tuning::EntryMatch match(series, record, tuning::sdre_value_matrices(sdre_controller, record, a.threads),
                                  report.objective.entry_floor, a.threads);
   report.setup_seconds = seconds_since(setup);
-  const tuning::FitResult fit = tuning::fit(match, options);
+  const tuning::FitResult fit = tuning::fit(match, options());
   const double entries = samples * static_cast<double>(series.T0().size());
   report.figure = "rms_relative_entry_error";
   report.figure_default = std::sqrt(fit.start_residual / entries);

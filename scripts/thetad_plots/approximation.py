@@ -3,9 +3,6 @@ error of the θ–D series ΣT_i against the SDRE's P (Frobenius and σmax) and 
 against the SDRE's, on a log axis (the three span several decades), over time.
 """
 
-import argparse
-import sys
-
 import numpy as np
 
 from . import style
@@ -30,31 +27,19 @@ def read_errors(source):
 
 def draw_errors(t, frobenius, sigma, control):
     """One log-scaled panel; an exact zero (σmax errors can vanish) is left out of the log axis."""
-    fig, ax = plt.subplots(figsize=style.size(style.COLUMN, 0.75))
+    fig, ax = plt.subplots(figsize=style.size(style.COLUMN, 0.9))
     for rank, (name, values) in enumerate(zip(CURVES, (frobenius, sigma, control))):
         shown = np.where(values > 0, values, np.nan)
         ax.plot(t, shown, **style.line(name, CURVES, rank, samples=len(t)))
     ax.set_yscale("log")
     ax.set_ylabel("relative error (–)")
     ax.set_xlabel("time t (s)")
-    ax.legend(loc="lower center", bbox_to_anchor=(0.5, 1.02), ncol=1, handlelength=3.2)
-    fig.suptitle("θ–D against the SDRE along an SDRE flight", y=1.0)
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=1, handlelength=3.2)
+    ax.set_title("θ–D against the SDRE along an SDRE flight")
     return fig
 
 
 def main(argv):
     """`plot_approximation.py APPROXIMATION_CSV OUT_STEM [--format png,pdf,svg]`; 0, or 1 after one line on stderr."""
-
-    parser = argparse.ArgumentParser(prog="plot_approximation.py", description=__doc__)
-    parser.add_argument("errors", help="approximation.csv written by thetad approximation")
-    parser.add_argument("out", help="output path without extension (an extension is dropped)")
-    style.add_format_option(parser)
-    arguments = parser.parse_args(argv[1:])
-    try:
-        style.apply()
-        stem = arguments.out.rsplit(".", 1)[0] if arguments.out.endswith(style.FORMATS) else arguments.out
-        style.save(draw_errors(*read_errors(arguments.errors)), stem, arguments.formats, dpi=200)
-    except (PlotError, ValueError) as e:
-        print(f"plot_approximation.py: error: {e}", file=sys.stderr)
-        return 1
-    return 0
+    return style.figure_command(argv, "plot_approximation.py", __doc__, "approximation.csv written by thetad approximation",
+                                read_errors, draw_errors)
