@@ -36,35 +36,46 @@ std::string format_duration(double seconds) {
   return text;
 }
 
+std::string Progress::what() const {
+  char text[96];
+  std::snprintf(text, sizeof text, "%g %s", total_, unit_.empty() ? "s simulated" : unit_.c_str());
+  return text;
+}
+
 std::string Progress::status(double done) const {
   const double wall = std::chrono::duration<double>(Clock::now() - started_).count();
-  const double rate = wall > 0.0 ? done / wall : 0.0;  // simulated seconds per wall second
+  const double rate = wall > 0.0 ? done / wall : 0.0;  // units per wall second
   char text[160];
-  if (rate > 0.0) {
-    std::snprintf(text, sizeof text, "%3.0f %% (%.1f of %g s simulated, %.2fx real time, ETA %s)",
-                  100.0 * done / total_, done, total_, rate, format_duration((total_ - done) / rate).c_str());
+  if (rate > 0.0 && unit_.empty()) {
+    std::snprintf(text, sizeof text, "%3.0f %% (%.1f of %s, %.2fx real time, ETA %s)", 100.0 * done / total_, done,
+                  what().c_str(), rate, format_duration((total_ - done) / rate).c_str());
+  } else if (rate > 0.0) {
+    std::snprintf(text, sizeof text, "%3.0f %% (%g of %s, at most %s left)", 100.0 * done / total_, done,
+                  what().c_str(), format_duration((total_ - done) / rate).c_str());
   } else {
-    std::snprintf(text, sizeof text, "%3.0f %% (%.1f of %g s simulated)", 100.0 * done / total_, done, total_);
+    std::snprintf(text, sizeof text, "%3.0f %% (%g of %s)", 100.0 * done / total_, done, what().c_str());
   }
   return text;
 }
 
-void Progress::start(const std::string& label, double total) {
+void Progress::start(const std::string& label, double total, const std::string& unit) {
   label_ = label;
+  unit_ = unit;
   total_ = total;
   started_ = last_shown_ = Clock::now();
-  if (mode_ == Mode::lines) std::fprintf(stderr, "%s flying (%g s simulated)\n", label_.c_str(), total_);
+  if (mode_ == Mode::lines)
+    std::fprintf(stderr, "%s %s (%s)\n", label_.c_str(), unit_.empty() ? "flying" : "started", what().c_str());
 }
 
-void Progress::update(double done) {
+void Progress::update(double done, const std::string& note) {
   if (mode_ == Mode::quiet) return;
   const auto now = Clock::now();
   const auto since = now - last_shown_;
   if (mode_ == Mode::live && since >= std::chrono::milliseconds(200)) {
-    std::fprintf(stderr, "\r\033[K%s %s", label_.c_str(), status(done).c_str());
+    std::fprintf(stderr, "\r\033[K%s %s%s%s", label_.c_str(), status(done).c_str(), note.empty() ? "" : " ", note.c_str());
     last_shown_ = now;
   } else if (mode_ == Mode::lines && since >= interval_) {
-    std::fprintf(stderr, "%s %s\n", label_.c_str(), status(done).c_str());
+    std::fprintf(stderr, "%s %s%s%s\n", label_.c_str(), status(done).c_str(), note.empty() ? "" : " ", note.c_str());
     last_shown_ = now;
   }
 }

@@ -17,9 +17,11 @@ class Progress {
 
   explicit Progress(Mode mode);
 
-  // One task of `total` units (simulated seconds), shown under `label`.
-  void start(const std::string& label, double total);
-  void update(double done);
+  // One task of `total` units, shown under `label`: simulated seconds when `unit` is empty (with
+  // the real-time factor), else counted things such as "evaluations".
+  void start(const std::string& label, double total, const std::string& unit = {});
+  // `note` follows the figures ("best 3.2e5").
+  void update(double done, const std::string& note = {});
   // Ends the task's display with `outcome` ("completed (12.3 s wall)").
   void finish(const std::string& outcome);
 
@@ -28,10 +30,11 @@ class Progress {
  private:
   using Clock = std::chrono::steady_clock;
   std::string status(double done) const;
+  std::string what() const;  // "12.5 s simulated", "40 evaluations"
 
   Mode mode_;
   std::chrono::duration<double> interval_;
-  std::string label_;
+  std::string label_, unit_;
   double total_ = 0.0;
   Clock::time_point started_, last_shown_;
 };

@@ -11,6 +11,7 @@
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/text_file.hpp"
+#include "tuning/packed_series.hpp"
 #include "tuning/parallel.hpp"
 #include "tuning/sigma_fit.hpp"
 
@@ -30,30 +31,42 @@ std::string header(Eigen::Index n, Eigen::Index m) {
 
 }  // namespace
 
-SdreRecorder::SdreRecorder(const SdreController& sdre, int every, Eigen::Index expected_samples)
-    : sdre_(sdre), every_(every) {
+SdreRecorder::SdreRecorder(const SdreController& sdre, int every, Eigen::Index expected_samples, const Controller* shadow)
+    : sdre_(sdre), shadow_(shadow ? shadow->clone() : nullptr), shadow_input_(sdre.settings().R.rows()), every_(every) {
   if (every < 1) throw Error("tuning: the record keeps every N-th controller sample, N >= 1, got " + std::to_string(every));
   const auto kept = static_cast<std::size_t>(expected_samples / every + 1);
+  const auto m = static_cast<std::size_t>(sdre.settings().R.rows());
   time_.reserve(kept);
   states_.reserve(kept * static_cast<std::size_t>(sdre.settings().Q.rows()));
-  inputs_.reserve(kept * static_cast<std::size_t>(sdre.settings().R.rows()));
+  inputs_.reserve(kept * m);
+  if (shadow_) shadow_inputs_.reserve(kept * m);
 }
+
+SdreRecorder::SdreRecorder(const SdreRecorder& other)
+    : Controller(other), sdre_(other.sdre_), shadow_(other.shadow_ ? other.shadow_->clone() : nullptr),
+      shadow_input_(other.shadow_input_), every_(other.every_), sample_(other.sample_), time_(other.time_),
+      states_(other.states_), inputs_(other.inputs_), shadow_inputs_(other.shadow_inputs_) {}
 
 void SdreRecorder::reset(const Eigen::VectorXd& x0, double t0) {
   sdre_.reset(x0, t0);
+  if (shadow_) shadow_->reset(x0, t0);
   sample_ = 0;
   time_.clear();
   states_.clear();
   inputs_.clear();
+  shadow_inputs_.clear();
 }
 
 void SdreRecorder::control(double t, const Eigen::Ref<const Eigen::VectorXd>& measured_state,
                            const Reference& reference, Eigen::Ref<Eigen::VectorXd> u) {
   sdre_.control(t, measured_state, reference, u);
+  // Every sample, kept or not: the shadow's fixed point starts from its own previous input.
+  if (shadow_) shadow_->control(t, measured_state, reference, shadow_input_);
   if (sample_++ % every_ != 0) return;
   time_.push_back(t);
   states_.insert(states_.end(), measured_state.begin(), measured_state.end());
   inputs_.insert(inputs_.end(), u.begin(), u.end());
+  if (shadow_) shadow_inputs_.insert(shadow_inputs_.end(), shadow_input_.begin(), shadow_input_.end());
 }
 
 TuningRecord SdreRecorder::finish(const std::string& scenario, int threads) const {
@@ -65,6 +78,7 @@ TuningRecord SdreRecorder::finish(const std::string& scenario, int threads) cons
   const Eigen::Index K = record.size();
   record.states = Eigen::Map<const Eigen::MatrixXd>(states_.data(), n, K);
   record.inputs = Eigen::Map<const Eigen::MatrixXd>(inputs_.data(), m, K);
+  if (shadow_) record.shadow_inputs = Eigen::Map<const Eigen::MatrixXd>(shadow_inputs_.data(), m, K);
   record.sigma_sdre.resize(K);
   for_each_chunk(static_cast<std::size_t>(K), 64, threads, [&](int, std::size_t, std::size_t begin, std::size_t end) {
     Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(n);
@@ -76,15 +90,26 @@ TuningRecord SdreRecorder::finish(const std::string& scenario, int threads) cons
 }
 
 TuningRecord record_sdre_flight(const Flight& flight, const SdreController& sdre, int every, int threads,
-                                Progress* progress) {
+                                Progress* progress, const Controller* shadow) {
   const sim::SimulationSettings& settings = flight.settings();
   const auto samples = static_cast<Eigen::Index>(std::llround(settings.duration / settings.controller_period()));
-  PreparedController prepared{{"sdre-record", "sdre", {}, {}, {}}, std::make_unique<SdreRecorder>(sdre, every, samples), {}, {}};
+  PreparedController prepared{{"sdre-record", "sdre", {}, {}, {}}, std::make_unique<SdreRecorder>(sdre, every, samples, shadow), {}, {}};
   const RunResult run = flight.fly(prepared, progress, "sdre (record):");
   if (!run.completed())
     throw Error("tuning: the SDRE flight of " + flight.scenario().name + " diverged (" + run.summary.reason +
                 "); there is no full trajectory to tune on");
   return dynamic_cast<const SdreRecorder&>(*prepared.controller).finish(flight.scenario().name, threads);
+}
+
+Eigen::MatrixXd sdre_value_matrices(const SdreController& sdre, const TuningRecord& record, int threads) {
+  const Eigen::Index n = record.states.rows();
+  Eigen::MatrixXd packed(n * (n + 1) / 2, record.size());
+  for_each_chunk(static_cast<std::size_t>(record.size()), 64, threads, [&](int, std::size_t, std::size_t begin, std::size_t end) {
+    for (auto k = static_cast<Eigen::Index>(begin); k < static_cast<Eigen::Index>(end); ++k)
+      pack_lower(sdre.value_matrix(record.states.col(k), record.inputs.col(k), record.time[static_cast<std::size_t>(k)]),
+                 packed.col(k).data());
+  });
+  return packed;
 }
 
 std::string record_csv(const TuningRecord& record) {

@@ -26,6 +26,8 @@ struct TuningRecord {
   Eigen::MatrixXd states;     // n × K: the measured state x_k the SDRE saw
   Eigen::MatrixXd inputs;     // m × K: the input u_k at which F(x_k; u_k), B(x_k; u_k) are taken
   Eigen::VectorXd sigma_sdre; // K: σ_max(P_SDRE(x_k; u_k)) of Eq. (37)
+  // m × K: what a shadow controller commanded at each kept sample (empty without one; not in the CSV).
+  Eigen::MatrixXd shadow_inputs;
 
   Eigen::Index size() const { return static_cast<Eigen::Index>(time.size()); }
 };
@@ -38,7 +40,10 @@ struct TuningRecord {
 class SdreRecorder final : public Controller {
  public:
   // `expected_samples`: the run's controller samples, so that control() never allocates.
-  SdreRecorder(const SdreController& sdre, int every, Eigen::Index expected_samples);
+  // `shadow` (optional, copied): a controller that computes its own input at every sample from
+  // the same measurement and reference without flying it, e.g. the θ–D in the SDRE's place.
+  SdreRecorder(const SdreController& sdre, int every, Eigen::Index expected_samples, const Controller* shadow = nullptr);
+  SdreRecorder(const SdreRecorder& other);
 
   std::string name() const override { return sdre_.name(); }
   std::unique_ptr<Controller> clone() const override { return std::make_unique<SdreRecorder>(*this); }
@@ -53,17 +58,24 @@ class SdreRecorder final : public Controller {
 
  private:
   SdreController sdre_;
+  std::unique_ptr<Controller> shadow_;
+  Eigen::VectorXd shadow_input_;
   int every_;
   long sample_ = 0;
   std::vector<double> time_;
-  std::vector<double> states_, inputs_;  // column-major n × K and m × K as they grow
+  std::vector<double> states_, inputs_, shadow_inputs_;  // column-major n × K and m × K as they grow
 };
 
 // Flies `sdre` (wrapped in an SdreRecorder) through `flight` and returns the record, keeping every
 // `every`-th sample, σ_max by cold solves on `threads` threads. Throws thetad::Error if the flight
 // diverges: a record that stops early would tune on a partial trajectory without saying so.
+// `shadow` as for SdreRecorder.
 TuningRecord record_sdre_flight(const Flight& flight, const SdreController& sdre, int every = 10, int threads = 2,
-                                Progress* progress = nullptr);
+                                Progress* progress = nullptr, const Controller* shadow = nullptr);
+
+// P_SDRE(x_k; u_k) of every sample by cold CARE solves on `threads` threads, as packed lower
+// triangles (pack_lower), one column per sample: what the per-entry objective compares ΣT_i with.
+Eigen::MatrixXd sdre_value_matrices(const SdreController& sdre, const TuningRecord& record, int threads);
 
 // CSV: two comment lines (format, scenario), then the header t_s,x_0..x_{n-1},u_0..u_{m-1},sigma_max_P
 // and one row per sample in %.17g (exact round trip). Written atomically.

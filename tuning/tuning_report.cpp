@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/error.hpp"
 #include "experiment/run_result.hpp"
 
 namespace thetad::tuning {
@@ -14,57 +15,102 @@ using Json = nlohmann::ordered_json;
 
 std::vector<double> values(const Eigen::VectorXd& v) { return {v.data(), v.data() + v.size()}; }
 
-Json to_json(const Validation& v) {
-  const sim::RunSummary& s = v.summary;
-  const auto xyz = [](const Eigen::Vector3d& e) { return Json::array({e.x(), e.y(), e.z()}); };
-  return {{"scenario", v.scenario},
-          {"role", v.role},
-          {"parameters", v.parameters},
-          {"status", status_text(s)},
-          {"rms_tracking_error_m", xyz(s.rms_tracking_error)},
-          {"max_tracking_error_m", xyz(s.max_tracking_error)},
-          {"cost", s.cost}};
+// NaN (an interval of one pair) as null: JSON has no NaN.
+Json number(double value) { return std::isfinite(value) ? Json(value) : Json(nullptr); }
+
+Json to_json(const PairedComparison& c) {
+  return {{"metric", metric_name(c.metric)},
+          {"default_median", c.default_median},
+          {"tuned_median", c.tuned_median},
+          {"difference_median", c.difference.median},
+          {"difference_interval", {number(c.difference.low), number(c.difference.high)}}};
 }
 
-const char* weighting(const FitOptions& options) {
-  return options.weighting == Weighting::relative ? "relative" : "absolute";
+Json to_json(const HeldOutValidation& v, const std::string& tuning_scenario) {
+  Json runs = Json::array();
+  for (std::size_t i = 0; i < v.seeds.size(); ++i)
+    runs.push_back({{"seed", v.seeds[i]},
+                    {"default", {{"status", status_text(v.default_runs[i])}, {"cost", v.default_runs[i].cost},
+                                 {"rms_error_m", v.default_runs[i].rms_tracking_error.norm()}}},
+                    {"tuned", {{"status", status_text(v.tuned_runs[i])}, {"cost", v.tuned_runs[i].cost},
+                               {"rms_error_m", v.tuned_runs[i].rms_tracking_error.norm()}}}});
+  return {{"scenario", v.scenario},
+          {"role", v.scenario == tuning_scenario ? "tuning scenario" : "held-out scenario"},
+          {"draws", v.seeds.size()},
+          {"pairs", v.pairs()},
+          {"diverged_default", v.diverged_default()},
+          {"diverged_tuned", v.diverged_tuned()},
+          {"bootstrap", {{"method", "percentile"}, {"confidence", 0.95}, {"resamples", v.resamples}, {"seed", v.bootstrap_seed}}},
+          {"cost", to_json(v.cost)},
+          {"rms_error", to_json(v.rms_error)},
+          {"runs", runs}};
+}
+
+Json to_json(const ObjectiveSettings& o) {
+  Json j = {{"name", objective_name(o.objective)}};
+  switch (o.objective) {
+    case Objective::sigma:
+      j["weighting"] = o.weighting == Weighting::relative ? "relative" : "absolute";
+      j["every"] = o.every;
+      break;
+    case Objective::entries:
+      j["entry_floor"] = o.entry_floor;
+      j["every"] = o.every;
+      break;
+    case Objective::closed_loop:
+      j["metric"] = metric_name(o.metric);
+      j["training_seeds"] = o.training_seeds;
+      break;
+  }
+  return j;
 }
 
 }  // namespace
 
-double TuningReport::rms_sigma_error_default() const {
-  return std::sqrt(fit.start_residual / static_cast<double>(samples));
+const char* objective_name(Objective objective) {
+  switch (objective) {
+    case Objective::sigma: return "sigma";
+    case Objective::entries: return "entries";
+    case Objective::closed_loop: return "closed-loop";
+  }
+  return "";
 }
 
-double TuningReport::rms_sigma_error_tuned() const { return std::sqrt(fit.residual / static_cast<double>(samples)); }
+Objective parse_objective(const std::string& name) {
+  for (const Objective o : {Objective::sigma, Objective::entries, Objective::closed_loop})
+    if (name == objective_name(o)) return o;
+  throw Error("tuning: unknown objective '" + name + "' (known: sigma, entries, closed-loop)");
+}
 
 bool TuningReport::any_diverged() const {
-  return std::any_of(validations.begin(), validations.end(),
-                     [](const Validation& v) { return v.summary.status != sim::RunStatus::completed; });
+  return std::any_of(validations.begin(), validations.end(), [](const HeldOutValidation& v) {
+    return v.diverged_default() > 0 || v.diverged_tuned() > 0;
+  });
 }
 
 Json to_json(const TuningReport& r) {
   Json j;
   j["scenario"] = r.scenario;
   j["seed"] = r.seed;
-  j["record"] = {{"samples", r.samples}, {"reused", r.record_reused}};
+  j["objective"] = to_json(r.objective);
+  if (r.objective.objective != Objective::closed_loop) j["record"] = {{"samples", r.samples}, {"reused", r.record_reused}};
   j["terms"] = r.terms;
   j["algorithm"] = r.options.algorithm;
-  j["weighting"] = weighting(r.options);
   j["bounds"] = {{"k", {r.options.k_lower, r.options.k_upper}}, {"l", {r.options.l_lower, r.options.l_upper}}};
+  j["budget"] = {{"evaluations", r.options.max_local_evaluations}, {"seconds", r.options.max_seconds}};
   j["k"] = values(r.fit.k);
   j["l"] = values(r.fit.l);
   j["residual_default"] = r.fit.start_residual;
   j["residual_tuned"] = r.fit.residual;
-  j["rms_sigma_error_default"] = r.rms_sigma_error_default();
-  j["rms_sigma_error_tuned"] = r.rms_sigma_error_tuned();
+  j[r.figure + "_default"] = r.figure_default;
+  j[r.figure + "_tuned"] = r.figure_tuned;
   j["evaluations"] = r.fit.evaluations;
   j["stop_reason"] = r.fit.stop_reason;
-  j["expansion_seconds"] = r.expansion_seconds;
+  j["setup_seconds"] = r.setup_seconds;
   j["fit_seconds"] = r.fit.seconds;
   j["threads"] = r.threads;
   j["validation"] = Json::array();
-  for (const Validation& v : r.validations) j["validation"].push_back(to_json(v));
+  for (const HeldOutValidation& v : r.validations) j["validation"].push_back(to_json(v, r.scenario));
   j["provenance"] = to_json(r.provenance);
   return j;
 }
@@ -75,8 +121,8 @@ std::string tuned_settings_file(const TuningReport& report, const YAML::Node& se
   YAML::Emitter emitter;
   emitter.SetDoublePrecision(17);
   emitter << file;
-  return "# thetad tune on " + report.scenario + " (" + report.options.algorithm + ", " + weighting(report.options) +
-         " residual, seed " + std::to_string(report.seed) + ")\n" + emitter.c_str() + "\n";
+  return "# thetad tune on " + report.scenario + " (objective " + objective_name(report.objective.objective) + ", " +
+         report.options.algorithm + ", seed " + std::to_string(report.seed) + ")\n" + emitter.c_str() + "\n";
 }
 
 std::string sigma_curves_csv(const SigmaMatch& match, const TuningRecord& record, const FitResult& fit) {

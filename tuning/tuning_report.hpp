@@ -1,7 +1,7 @@
 #pragma once
 
-// What a tuning run is on disk (`thetad tune`): the tuned settings file, the σ_max curves and
-// tuning.json, defined here for every front end.
+// What a tuning run is on disk (`thetad tune`): the objective and its settings, the tuned settings
+// file, the σ_max curves (σ objective) and tuning.json, defined here for every front end.
 
 #include <cstdint>
 #include <filesystem>
@@ -11,36 +11,52 @@
 #include <nlohmann/json.hpp>
 #include <yaml-cpp/yaml.h>
 
-#include "core/sim/simulator.hpp"
 #include "experiment/provenance.hpp"
+#include "tuning/closed_loop.hpp"
+#include "tuning/held_out.hpp"
 #include "tuning/record.hpp"
+#include "tuning/search.hpp"
 #include "tuning/sigma_fit.hpp"
 
 namespace thetad::tuning {
 
-// One validation flight of a θ–D (the default or the tuned k_i, l_i) on a scenario, in a role
-// ("tuning": the scenario tuned on; "held-out").
-struct Validation {
-  std::string scenario, role, parameters;
-  sim::RunSummary summary;
+enum class Objective {
+  sigma,        // the paper's least squares on σ_max (sigma_fit)
+  entries,      // the per-entry relative fit of ΣT_i to P (entry_fit)
+  closed_loop,  // the mean cost or RMS error over training draws (closed_loop)
+};
+const char* objective_name(Objective objective);  // "sigma", "entries", "closed-loop"
+// Throws thetad::Error naming the known objectives.
+Objective parse_objective(const std::string& name);
+
+// The objective and the settings that only it reads.
+struct ObjectiveSettings {
+  Objective objective = Objective::sigma;
+  Weighting weighting = Weighting::absolute;  // sigma
+  double entry_floor = 1e-3;                  // entries: see entry_fit.hpp
+  int every = 10;                             // sigma, entries: the record keeps every N-th sample
+  Metric metric = Metric::cost;               // closed-loop
+  std::vector<std::uint64_t> training_seeds;  // closed-loop
 };
 
 struct TuningReport {
   std::string scenario;
   std::uint64_t seed = 0;
-  Eigen::Index samples = 0;
+  ObjectiveSettings objective;
+  Eigen::Index samples = 0;    // of the record (sigma, entries)
   bool record_reused = false;
   int terms = 0;
   FitOptions options;
   FitResult fit;
-  double expansion_seconds = 0.0;
+  // What the objective's value means in words ("rms_sigma_error", "mean_cost", ...), at the
+  // default and the tuned k, l.
+  std::string figure;
+  double figure_default = 0.0, figure_tuned = 0.0;
+  double setup_seconds = 0.0;  // before the search: the series expansion and target matrices
   int threads = 0;
-  std::vector<Validation> validations;
+  std::vector<HeldOutValidation> validations;  // the tuning scenario first, then a held-out scenario
   Provenance provenance;
 
-  // RMS of the σ_max error per sample, with the default k_i = l_i = 1 and tuned.
-  double rms_sigma_error_default() const;
-  double rms_sigma_error_tuned() const;
   bool any_diverged() const;
 };
 

@@ -6,6 +6,7 @@
 #include <exception>
 #include <filesystem>
 
+#include "apps/thetad/approximation_command.hpp"
 #include "apps/thetad/bench_command.hpp"
 #include "apps/thetad/campaign_command.hpp"
 #include "apps/thetad/compare_command.hpp"
@@ -51,6 +52,8 @@ int main(int argc, char** argv) {
   auto* plot = thetad::app::add_plot_command(app, plot_arguments);
   thetad::app::TuneArguments tune_arguments;
   auto* tune = thetad::app::add_tune_command(app, tune_arguments);
+  thetad::app::ApproximationArguments approximation_arguments;
+  auto* approximation = thetad::app::add_approximation_command(app, approximation_arguments);
   auto* list = app.add_subcommand("list", "List the registered controllers with their descriptions and origins");
   thetad::app::BenchArguments bench_arguments;
   auto* bench = thetad::app::add_bench_command(app, bench_arguments);
@@ -73,6 +76,7 @@ int main(int argc, char** argv) {
     if (*compare) return thetad::app::run_compare(compare_arguments);
     if (*list) return thetad::app::run_list();
     if (*tune) return thetad::app::run_tune(tune_arguments);
+    if (*approximation) return thetad::app::run_approximation(approximation_arguments);
     if (*plot) return thetad::app::run_plot(plot_arguments);
     if (*design_lqr) return thetad::app::run_design_lqr(design_lqr_arguments);
     if (*bench) return thetad::app::run_bench(bench_arguments);

@@ -18,15 +18,6 @@ namespace thetad::app {
 
 namespace {
 
-// An unsigned 64-bit decimal, whole: "-1", "" or a number beyond 2^64 - 1 are errors, not wraps.
-std::uint64_t parse_seed(const std::string& text) {
-  std::uint64_t value = 0;
-  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (text.empty() || error != std::errc() || end != text.data() + text.size())
-    throw CLI::ValidationError("--seed", "'" + text + "': expected a whole number from 0 to 18446744073709551615");
-  return value;
-}
-
 void print_summary(const RunResult& result, const Flight& flight, const RunFiles& files) {
   const sim::RunSummary& s = result.summary;
   std::printf("%s on %s (%g s, seed %llu, %s): %s%s%s.\n", result.spec.label.c_str(), flight.scenario().name.c_str(),
@@ -104,6 +95,14 @@ int run_plant(const RunArguments& arguments) {
 }
 
 }  // namespace
+
+std::uint64_t parse_seed(const std::string& text, const std::string& option) {
+  std::uint64_t value = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (text.empty() || error != std::errc() || end != text.data() + text.size())
+    throw CLI::ValidationError(option, "'" + text + "': expected a whole number from 0 to 18446744073709551615");
+  return value;
+}
 
 void add_flight_options(CLI::App& command, FlightOptions& options, bool scenario_required) {
   auto* scenario = command.add_option("--scenario", options.scenario,

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -26,6 +27,10 @@ struct FlightOptions {
   bool quiet = false;
   std::filesystem::path out;
 };
+
+// A seed given as `option`: an unsigned 64-bit decimal, whole; "-1", "" or a number beyond
+// 2^64 - 1 are CLI11 validation errors naming the option, not wraps.
+std::uint64_t parse_seed(const std::string& text, const std::string& option = "--seed");
 
 // Adds --scenario, --settings, --seed, --ideal, --duration, --dt, --log-every, --summary-only,
 // --no-timing, --quiet and --out to `command`.

@@ -1,23 +1,20 @@
 #include "apps/thetad/tune_command.hpp"
 
-#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <optional>
-#include <unistd.h>
-
-#include <nlohmann/json.hpp>
 
 #include "controllers/sdre.hpp"
 #include "controllers/theta_d.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "experiment/controller_spec.hpp"
-#include "experiment/result_json.hpp"
 #include "experiment/run_files.hpp"
 #include "experiment/scenario_files.hpp"
+#include "tuning/closed_loop.hpp"
+#include "tuning/entry_fit.hpp"
+#include "tuning/held_out.hpp"
 #include "tuning/record.hpp"
 #include "tuning/sigma_fit.hpp"
 #include "tuning/tuning_report.hpp"
@@ -49,26 +46,31 @@ std::filesystem::path default_holdout(const std::filesystem::path& scenario) {
   return std::filesystem::exists(sibling) ? sibling : std::filesystem::path();
 }
 
-// The θ–D the command flies and tunes: the settings file's block (or the defaults) with this many
-// terms and these k, l (empty: the defaults, all 1), built for `flight`.
-PreparedController make_theta_d(const Flight& flight, const YAML::Node& base, const std::string& label, int terms,
-                                const Eigen::VectorXd& k, const Eigen::VectorXd& l) {
-  YAML::Node block = base ? YAML::Clone(base) : YAML::Node(YAML::NodeType::Map);
-  block[theta_d_keys::terms] = terms;
-  const auto values = [](const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); };
-  if (k.size() > 0) block[theta_d_keys::k] = values(k);
-  if (l.size() > 0) block[theta_d_keys::l] = values(l);
-  return flight.prepare({label, "theta-d", block, {}, {}});
+tuning::ObjectiveSettings objective_settings(const TuneArguments& a) {
+  tuning::ObjectiveSettings o;
+  o.objective = tuning::parse_objective(a.objective);
+  o.weighting = a.relative ? tuning::Weighting::relative : tuning::Weighting::absolute;
+  o.every = a.every;
+  o.metric = tuning::parse_metric(a.metric);
+  if (!(a.entry_floor > 0.0 && a.entry_floor <= 1.0))
+    throw Error("--entry-floor must lie in (0, 1], got " + std::to_string(a.entry_floor));
+  o.entry_floor = a.entry_floor;
+  if (o.objective == tuning::Objective::closed_loop && a.draws < 1)
+    throw Error("--draws: the closed-loop objective needs at least 1 training draw");
+  return o;
 }
 
-tuning::FitOptions fit_options(const TuneArguments& a, std::uint64_t seed) {
+tuning::FitOptions fit_options(const TuneArguments& a, const tuning::ObjectiveSettings& objective, std::uint64_t seed) {
   tuning::FitOptions options;
-  options.algorithm = a.algorithm;
-  options.weighting = a.relative ? tuning::Weighting::relative : tuning::Weighting::absolute;
+  // A diverged draw is +∞ to the closed loop, which BOBYQA's quadratic model cannot step around.
+  options.algorithm = a.algorithm.value_or(objective.objective == tuning::Objective::closed_loop ? "LN_COBYLA" : "LN_BOBYQA");
   options.k_lower = a.k_bounds[0];
   options.k_upper = a.k_bounds[1];
   options.l_lower = a.l_bounds[0];
   options.l_upper = a.l_bounds[1];
+  options.max_local_evaluations =
+      a.max_evaluations.value_or(objective.objective == tuning::Objective::closed_loop ? 40 : 1500);
+  options.max_seconds = a.max_seconds;
   options.seed = seed;
   tuning::check_fit_options(options, a.terms - 1);
   return options;
@@ -86,12 +88,10 @@ std::optional<tuning::TuningRecord> reused_record(const TuneArguments& a, const 
 }
 
 // The SDRE flight recorded now and saved (to --record, else <out>/sdre-record.csv).
-tuning::TuningRecord fly_record(const TuneArguments& a, const Flight& flight, const YAML::Node& settings,
+tuning::TuningRecord fly_record(const TuneArguments& a, const Flight& flight, const SdreController& sdre,
                                 Progress& progress) {
-  const PreparedController sdre = flight.prepare(parse_controller_spec("sdre", settings, a.flight.settings.string()));
   const auto start = Clock::now();
-  tuning::TuningRecord record = tuning::record_sdre_flight(flight, dynamic_cast<const SdreController&>(*sdre.controller),
-                                                           a.every, a.threads, &progress);
+  tuning::TuningRecord record = tuning::record_sdre_flight(flight, sdre, a.every, a.threads, &progress);
   const std::filesystem::path file = a.record.empty() ? a.flight.out / "sdre-record.csv" : a.record;
   tuning::write_record(file, record);
   std::fprintf(stderr, "recorded %lld samples with sigma_max(P) by cold CARE solves (%.1f s): %s\n",
@@ -99,129 +99,217 @@ tuning::TuningRecord fly_record(const TuneArguments& a, const Flight& flight, co
   return record;
 }
 
-// The default and the tuned θ–D flown on each validation flight.
-std::vector<tuning::Validation> validate(const TuneArguments& a, const std::vector<std::pair<const Flight*, std::string>>& flights,
-                                 const YAML::Node& base, const tuning::FitResult& fit, Progress& progress) {
-  std::vector<tuning::Validation> validations;
-  for (const auto& [flight, role] : flights) {
-    for (const bool tuned : {false, true}) {
-      const std::string parameters = tuned ? "tuned" : "default";
-      PreparedController controller = tuned ? make_theta_d(*flight, base, "theta-d-tuned", a.terms, fit.k, fit.l)
-                                            : make_theta_d(*flight, base, "theta-d-default", a.terms, {}, {});
-      const RunResult run =
-          flight->fly(controller, &progress, "theta-d " + parameters + " on " + flight->scenario().name + ":");
-      validations.push_back({flight->scenario().name, role, parameters, run.summary});
-    }
+// `options` reporting each evaluation to `progress` as a task of its evaluation budget.
+tuning::FitOptions with_progress(tuning::FitOptions options, bool global, Progress& progress, const std::string& label) {
+  progress.start(label, options.max_local_evaluations + (global ? options.max_global_evaluations : 0), "evaluations");
+  options.progress = [&progress](int evaluations, double best) {
+    char note[48];
+    std::snprintf(note, sizeof note, "best %.6e", best);
+    progress.update(evaluations, note);
+  };
+  return options;
+}
+
+// The search of the chosen objective; fills the record-based fields and the figure of `report`
+// and writes <out>/sigma-curves.csv for the sigma objective.
+tuning::FitResult search(const TuneArguments& a, const Flight& flight, const YAML::Node& settings, const YAML::Node& base,
+                         const std::optional<tuning::TuningRecord>& reused, tuning::DrawFlights& draws,
+                         tuning::TuningReport& report, Progress& progress) {
+  // Started once the record and the expansion are ready: one progress task at a time.
+  const auto options = [&] {
+    const std::string& algorithm = report.options.algorithm;
+    return with_progress(report.options, algorithm.rfind("GN_", 0) == 0, progress, "fit (" + a.objective + ", " + algorithm + "):");
+  };
+  if (report.objective.objective == tuning::Objective::closed_loop) {
+    const tuning::FitResult fit = tuning::fit(draws, report.objective.training_seeds, report.objective.metric, options());
+    report.figure = std::string("mean_") + (report.objective.metric == tuning::Metric::cost ? "cost" : "rms_error_m");
+    report.figure_default = fit.start_residual;
+    report.figure_tuned = fit.residual;
+    return fit;
   }
-  return validations;
+  const PreparedController sdre = flight.prepare(parse_controller_spec("sdre", settings, a.flight.settings.string()));
+  const auto& sdre_controller = dynamic_cast<const SdreController&>(*sdre.controller);
+  const tuning::TuningRecord record = reused ? *reused : fly_record(a, flight, sdre_controller, progress);
+  report.samples = record.size();
+  report.record_reused = reused.has_value();
+  // The θ–D starts where the recorded flight started: A0, g0, T0 at the scenario's x0, t0 = 0.
+  PreparedController theta_d = flight.prepare(tuning::theta_d_spec(base, "theta-d", a.terms, {}, {}));
+  auto& series = dynamic_cast<ThetaDController&>(*theta_d.controller);
+  series.reset(flight.scenario().initial_state, 0.0);
+  const auto setup = Clock::now();
+  const auto samples = static_cast<double>(record.size());
+  if (report.objective.objective == tuning::Objective::sigma) {
+    const tuning::SigmaMatch match(series, record, a.threads);
+    report.setup_seconds = seconds_since(setup);
+    const tuning::FitResult fit = tuning::fit(match, report.objective.weighting, options());
+    report.figure = "rms_sigma_error";
+    report.figure_default = std::sqrt(fit.start_residual / samples);
+    report.figure_tuned = std::sqrt(fit.residual / samples);
+    write_file_atomically(a.flight.out / "sigma-curves.csv", sigma_curves_csv(match, record, fit));
+    return fit;
+  }
+  const tuning::EntryMatch match(series, record, tuning::sdre_value_matrices(sdre_controller, record, a.threads),
+                                 report.objective.entry_floor, a.threads);
+  report.setup_seconds = seconds_since(setup);
+  const tuning::FitResult fit = tuning::fit(match, options());
+  const double entries = samples * static_cast<double>(series.T0().size());
+  report.figure = "rms_relative_entry_error";
+  report.figure_default = std::sqrt(fit.start_residual / entries);
+  report.figure_tuned = std::sqrt(fit.residual / entries);
+  return fit;
+}
+
+void print_comparison(const std::string& scenario, const tuning::PairedComparison& c) {
+  std::printf("validation scenario=%s metric=%s default_median=%.8g tuned_median=%.8g difference_median=%.6g "
+              "difference_95=[%.6g,%.6g]\n",
+              scenario.c_str(), tuning::metric_name(c.metric), c.default_median, c.tuned_median, c.difference.median,
+              c.difference.low, c.difference.high);
 }
 
 // Quiet and parseable: one key=value line per figure.
 void print_report(const tuning::TuningReport& r, const std::vector<std::filesystem::path>& written) {
   const tuning::FitResult& fit = r.fit;
-  std::printf("scenario=%s samples=%lld terms=%d algorithm=%s weighting=%s\n", r.scenario.c_str(),
-              static_cast<long long>(r.samples), r.terms, r.options.algorithm.c_str(),
-              r.options.weighting == tuning::Weighting::relative ? "relative" : "absolute");
-  std::printf("k=%s\nl=%s\n", numbers(fit.k).c_str(), numbers(fit.l).c_str());
-  std::printf("residual_default=%.10g residual_tuned=%.10g rms_sigma_error_default=%.6g rms_sigma_error_tuned=%.6g\n",
-              fit.start_residual, fit.residual, r.rms_sigma_error_default(), r.rms_sigma_error_tuned());
-  std::printf("evaluations=%d expansion_seconds=%.3f fit_seconds=%.3f stop=\"%s\"\n", fit.evaluations,
-              r.expansion_seconds, fit.seconds, fit.stop_reason.c_str());
-  for (const tuning::Validation& v : r.validations) {
-    const sim::RunSummary& s = v.summary;
-    std::printf("validation scenario=%s role=%s theta_d=%s status=\"%s\" rms_m=%.5f,%.5f,%.5f max_m=%.5f,%.5f,%.5f "
-                "cost=%.8g\n",
-                v.scenario.c_str(), v.role.c_str(), v.parameters.c_str(), status_text(s).c_str(),
-                s.rms_tracking_error.x(), s.rms_tracking_error.y(), s.rms_tracking_error.z(), s.max_tracking_error.x(),
-                s.max_tracking_error.y(), s.max_tracking_error.z(), s.cost);
+  std::printf("scenario=%s objective=%s terms=%d algorithm=%s", r.scenario.c_str(),
+              tuning::objective_name(r.objective.objective), r.terms, r.options.algorithm.c_str());
+  switch (r.objective.objective) {
+    case tuning::Objective::sigma:
+      std::printf(" samples=%lld weighting=%s\n", static_cast<long long>(r.samples),
+                  r.objective.weighting == tuning::Weighting::relative ? "relative" : "absolute");
+      break;
+    case tuning::Objective::entries:
+      std::printf(" samples=%lld entry_floor=%g\n", static_cast<long long>(r.samples), r.objective.entry_floor);
+      break;
+    case tuning::Objective::closed_loop:
+      std::printf(" metric=%s training_draws=%zu\n", tuning::metric_name(r.objective.metric), r.objective.training_seeds.size());
+      break;
   }
-  std::printf("wrote=%s,%s,%s\n", written[0].c_str(), written[1].c_str(), written[2].c_str());
+  std::printf("k=%s\nl=%s\n", numbers(fit.k).c_str(), numbers(fit.l).c_str());
+  std::printf("residual_default=%.10g residual_tuned=%.10g %s_default=%.6g %s_tuned=%.6g\n", fit.start_residual,
+              fit.residual, r.figure.c_str(), r.figure_default, r.figure.c_str(), r.figure_tuned);
+  std::printf("evaluations=%d setup_seconds=%.3f fit_seconds=%.3f stop=\"%s\"\n", fit.evaluations, r.setup_seconds,
+              fit.seconds, fit.stop_reason.c_str());
+  for (const tuning::HeldOutValidation& v : r.validations) {
+    std::printf("validation scenario=%s role=%s draws=%zu first_seed=%llu pairs=%d diverged_default=%d diverged_tuned=%d\n",
+                v.scenario.c_str(), v.scenario == r.scenario ? "tuning-scenario" : "held-out-scenario", v.seeds.size(),
+                static_cast<unsigned long long>(v.seeds.front()), v.pairs(), v.diverged_default(), v.diverged_tuned());
+    print_comparison(v.scenario, v.cost);
+    print_comparison(v.scenario, v.rms_error);
+  }
+  std::string files;
+  for (const std::filesystem::path& file : written) files += (files.empty() ? "" : ",") + file.string();
+  std::printf("wrote=%s\n", files.c_str());
 }
 
 }  // namespace
 
 CLI::App* add_tune_command(CLI::App& app, TuneArguments& a) {
   auto* tune = app.add_subcommand(
-      "tune", "Fit theta-D's k_i, l_i so that sigma_max(sum T_i) matches sigma_max(P_SDRE) along an SDRE flight "
-              "(paper-spec 7.5); validate on the tuning and a held-out scenario");
+      "tune", "Fit theta-D's k_i, l_i by an objective (sigma: the paper's sigma_max match to an SDRE flight, "
+              "paper-spec 7.5; entries: a per-entry match; closed-loop: mean cost or RMS error over seeded draws); "
+              "compare default and tuned on held-out draws");
   add_flight_options(*tune, a.flight);
   tune->get_option("--out")->required();
+  tune->add_option("--objective", a.objective, "sigma, entries or closed-loop")
+      ->check(CLI::IsMember({"sigma", "entries", "closed-loop"}))
+      ->capture_default_str();
   // The expansion's pieces grow fast with N (5, 11, 29 for N = 3, 4, 5; 516 for N = 8), and every
   // sample stores all of them: N = 5 already needs ~340 MB for scenario I's 8500 samples.
   tune->add_option("--terms", a.terms, "N: the theta-D series T0 + ... + T_{N-1} (tunes N-1 pairs k_i, l_i)")
       ->check(CLI::Range(2, 5))
       ->capture_default_str();
   tune->add_option("--algorithm", a.algorithm,
-                   "NLopt algorithm: LN_BOBYQA, LN_SBPLX, LN_NELDERMEAD (local from k = l = 1) or GN_DIRECT_L, "
-                   "GN_ISRES (global, then LN_BOBYQA)")
+                   "NLopt algorithm: LN_BOBYQA (default), LN_COBYLA (default for closed-loop), LN_SBPLX, "
+                   "LN_NELDERMEAD (local from k = l = 1) or GN_DIRECT_L, GN_ISRES (global, then LN_BOBYQA)");
+  tune->add_option("--max-evaluations", a.max_evaluations,
+                   "Evaluation budget of the (local) search (default: 1500; 40 for closed-loop)")
+      ->check(CLI::Range(1, 1000000));
+  tune->add_option("--max-seconds", a.max_seconds, "Time budget of the search in seconds (0: none)")
+      ->check(CLI::Range(0.0, 1e7))
       ->capture_default_str();
   tune->add_option("--record", a.record,
-                   "SDRE record (CSV): reused if the file exists, else the flight is recorded into it "
+                   "sigma, entries: SDRE record (CSV), reused if the file exists, else the flight is recorded into it "
                    "(default: <out>/sdre-record.csv, always re-flown)");
-  tune->add_option("--every", a.every, "Keep every N-th controller sample in the record")
+  tune->add_option("--every", a.every, "sigma, entries: keep every N-th controller sample in the record")
       ->check(CLI::Range(1, 1000000))
       ->capture_default_str();
-  tune->add_flag("--relative", a.relative, "Fit relative errors (sigma_theta-D - sigma_SDRE) / sigma_SDRE");
+  tune->add_flag("--relative", a.relative, "sigma: fit relative errors (sigma_theta-D - sigma_SDRE) / sigma_SDRE");
+  tune->add_option("--entry-floor", a.entry_floor,
+                   "entries: an entry P_rc is scaled by max(|P_rc|, floor * sqrt(P_rr P_cc))")
+      ->capture_default_str();
+  tune->add_option("--metric", a.metric, "closed-loop, and the figure of merit: cost (J) or rms-error (m)")
+      ->check(CLI::IsMember({"cost", "rms-error"}))
+      ->capture_default_str();
+  tune->add_option("--draws", a.draws, "closed-loop: training draws, seeds S ... S+draws-1 (S: --seed or the scenario's)")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  tune->add_option("--holdout-draws", a.holdout_draws, "Held-out draws of the validation")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  tune->add_option_function<std::string>(
+      "--holdout-seed", [&a](const std::string& text) { a.holdout_seed = parse_seed(text, "--holdout-seed"); },
+      "First seed of the held-out draws (default: the seed after the training draws); must not overlap them");
   tune->add_option("--k-bounds", a.k_bounds, "Lower and upper bound of every k_i")->expected(2)->capture_default_str();
   tune->add_option("--l-bounds", a.l_bounds, "Lower and upper bound of every l_i")->expected(2)->capture_default_str();
   tune->add_option("--holdout", a.holdout,
-                   "Held-out scenario for validation (default: the other paper scenario, when tuning on one)");
-  tune->add_flag("--no-validation", a.no_validation, "Skip the validation flights");
-  tune->add_option("--threads", a.threads, "Threads of the fit")->check(CLI::Range(1, 64))->capture_default_str();
+                   "Held-out scenario, validated on the held-out draws too (default: the other paper scenario, when "
+                   "tuning on one)");
+  tune->add_flag("--no-validation", a.no_validation, "Skip the held-out validation");
+  tune->add_option("--threads", a.threads, "Threads of the fit and of the flights")->check(CLI::Range(1, 64))->capture_default_str();
   return tune;
 }
 
 int run_tune(const TuneArguments& a) {
-  // Everything that can be wrong with the inputs fails here, before a flight or a file. The
-  // validation flights need their summaries only.
+  // Everything that can be wrong with the inputs fails here, before a flight or a file. Every
+  // flight but the SDRE record needs its summary only.
   RunControls controls = run_controls(a.flight);
   controls.summary_only = true;
   const Flight flight(a.flight.scenario, controls);
-  const tuning::FitOptions options_without_progress = fit_options(a, flight.settings().seed);
+  const std::uint64_t seed = flight.settings().seed;
+  tuning::TuningReport report;
+  report.scenario = flight.scenario().name;
+  report.seed = seed;
+  report.objective = objective_settings(a);
+  report.terms = a.terms;
+  report.options = fit_options(a, report.objective, seed);
+  report.threads = a.threads;
+  report.provenance = flight.provenance();
+  const bool closed_loop = report.objective.objective == tuning::Objective::closed_loop;
+  // The record objectives train on the record's one flight, of seed S; the closed loop on S … S+draws−1.
+  const int training = closed_loop ? a.draws : 1;
+  const tuning::DrawSeeds seeds = tuning::draw_seeds(
+      seed, training, a.holdout_seed.value_or(seed + static_cast<std::uint64_t>(training)), a.no_validation ? 0 : a.holdout_draws);
+  if (closed_loop) report.objective.training_seeds = seeds.training;
+
   const YAML::Node settings = a.flight.settings.empty() ? YAML::Node() : load_settings_file(a.flight.settings);
   const YAML::Node base = settings.IsMap() && settings["theta-d"] ? settings["theta-d"] : YAML::Node();
-  std::optional<Flight> holdout;
+  tuning::DrawFlights draws(a.flight.scenario, controls, base, a.terms, a.threads);
+  std::optional<tuning::DrawFlights> holdout;
   const std::filesystem::path holdout_file =
       a.holdout.empty() ? default_holdout(find_scenario(a.flight.scenario)) : a.holdout;
-  if (!a.no_validation && !holdout_file.empty()) holdout.emplace(holdout_file.string(), controls);
-  const std::optional<tuning::TuningRecord> reused = reused_record(a, flight);
+  if (!a.no_validation && !holdout_file.empty()) holdout.emplace(holdout_file.string(), controls, base, a.terms, a.threads);
+  const std::optional<tuning::TuningRecord> reused = closed_loop ? std::nullopt : reused_record(a, flight);
   prepare_output_folder(a.flight.out);
 
   Progress progress(Progress::mode_for_stderr(a.flight.quiet));
-  const tuning::TuningRecord record = reused ? *reused : fly_record(a, flight, settings, progress);
-  // The θ–D starts where the recorded flight started: A0, g0, T0 at the scenario's x0, t0 = 0.
-  PreparedController theta_d = make_theta_d(flight, base, "theta-d", a.terms, {}, {});
-  auto& series = dynamic_cast<ThetaDController&>(*theta_d.controller);
-  series.reset(flight.scenario().initial_state, 0.0);
-  const auto expansion_start = Clock::now();
-  const tuning::SigmaMatch match(series, record, a.threads);
-  const double expansion_seconds = seconds_since(expansion_start);
+  report.fit = search(a, flight, settings, base, reused, draws, report, progress);
+  progress.finish("done: " + std::to_string(report.fit.evaluations) + " evaluations, " + report.fit.stop_reason);
+  std::vector<std::filesystem::path> written{a.flight.out / "theta-d-tuned.yaml", a.flight.out / "tuning.json"};
+  if (report.objective.objective == tuning::Objective::sigma) written.push_back(a.flight.out / "sigma-curves.csv");
+  write_file_atomically(written[0], tuned_settings_file(report, flight.prepare(tuning::theta_d_spec(base, "theta-d", a.terms,
+                                                                                                    report.fit.k, report.fit.l))
+                                                                    .settings));
 
-  tuning::FitOptions options = options_without_progress;
-  const bool live = progress.mode() == Progress::Mode::live;
-  auto last_draw = Clock::now();
-  options.progress = [&](int evaluations, double best) {
-    if (!live || Clock::now() - last_draw < std::chrono::milliseconds(100)) return;
-    last_draw = Clock::now();
-    std::fprintf(stderr, "\r\033[Kfit (%s): %d evaluations, best residual %.6e", a.algorithm.c_str(), evaluations, best);
-  };
-  const tuning::FitResult fit = tuning::fit(match, options);
-  if (live) std::fprintf(stderr, "\r\033[K");
-
-  tuning::TuningReport report{flight.scenario().name, flight.settings().seed, match.samples(), reused.has_value(),
-                              a.terms, options_without_progress, fit, expansion_seconds, a.threads, {},
-                              flight.provenance()};
-  const std::filesystem::path settings_file = a.flight.out / "theta-d-tuned.yaml";
-  write_file_atomically(settings_file, tuned_settings_file(report, make_theta_d(flight, base, "theta-d", a.terms, fit.k,
-                                                                                  fit.l).settings));
-  write_file_atomically(a.flight.out / "sigma-curves.csv", sigma_curves_csv(match, record, fit));
-
-  std::vector<std::pair<const Flight*, std::string>> validation_flights;
-  if (!a.no_validation) validation_flights.emplace_back(&flight, "tuning");
-  if (holdout) validation_flights.emplace_back(&*holdout, "held-out");
-  report.validations = validate(a, validation_flights, base, fit, progress);
-  write_file_atomically(a.flight.out / "tuning.json", to_json(report).dump(2) + "\n");
-  print_report(report, {settings_file, a.flight.out / "sigma-curves.csv", a.flight.out / "tuning.json"});
+  std::vector<tuning::DrawFlights*> validation{&draws};
+  if (holdout) validation.push_back(&*holdout);
+  for (tuning::DrawFlights* flights : validation) {
+    if (a.no_validation) break;
+    progress.start("validation on " + flights->flight().scenario().name + ":", 2.0 * static_cast<double>(seeds.held_out.size()),
+                   "flights");
+    report.validations.push_back(tuning::validate_held_out(*flights, report.fit.k, report.fit.l, seeds.held_out, seed));
+    progress.finish("done");
+  }
+  write_file_atomically(written[1], to_json(report).dump(2) + "\n");
+  print_report(report, written);
   return report.any_diverged() ? kExitDiverged : kExitCompleted;
 }
 

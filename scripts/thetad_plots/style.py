@@ -21,7 +21,9 @@ text width (17.6 cm); fonts are 8 pt at that size, so a figure pasted at its own
 like the paper's text.
 """
 
+import argparse
 import os
+import sys
 import zlib
 from dataclasses import dataclass
 
@@ -29,6 +31,8 @@ import matplotlib
 
 matplotlib.use(os.environ.get("MPLBACKEND", "Agg"))
 import matplotlib.pyplot as plt  # noqa: E402  (the backend must be chosen first)
+
+from .results import PlotError  # noqa: E402
 
 CM = 1 / 2.54
 COLUMN = 8.5 * CM
@@ -136,3 +140,22 @@ def add_format_option(parser):
     """The --format option of every figure command: one or more of png, pdf, svg."""
     parser.add_argument("--format", dest="formats", default="png", type=lambda s: s.split(","),
                         help="comma-separated output formats: png, pdf, svg (default png)")
+
+
+def figure_command(argv, prog, description, source_help, read, draw):
+    """The command of a one-figure script: `PROG SOURCE OUT_STEM [--format png,pdf,svg]` draws
+    draw(*read(SOURCE)) and saves it (an extension on OUT_STEM is dropped). 0, or 1 after one
+    line "PROG: error: ..." on stderr."""
+    parser = argparse.ArgumentParser(prog=prog, description=description)
+    parser.add_argument("source", help=source_help)
+    parser.add_argument("out", help="output path without extension (an extension is dropped)")
+    add_format_option(parser)
+    arguments = parser.parse_args(argv[1:])
+    try:
+        apply()
+        stem = arguments.out.rsplit(".", 1)[0] if arguments.out.endswith(FORMATS) else arguments.out
+        save(draw(*read(arguments.source)), stem, arguments.formats, dpi=200)
+    except (PlotError, ValueError) as e:
+        print(f"{prog}: error: {e}", file=sys.stderr)
+        return 1
+    return 0

@@ -3,9 +3,6 @@ series with the default and the tuned k_i, l_i over time (top), and their relati
 the SDRE (bottom, where the fit's effect shows: the three curves of the top panel agree to ~1e-5).
 """
 
-import argparse
-import sys
-
 import numpy as np
 
 from . import style
@@ -50,17 +47,5 @@ def draw_sigma_curves(t, sdre, default, tuned):
 
 def main(argv):
     """`plot_tuning.py SIGMA_CURVES_CSV OUT_STEM [--format png,pdf,svg]`; 0, or 1 after one line on stderr."""
-
-    parser = argparse.ArgumentParser(prog="plot_tuning.py", description=__doc__)
-    parser.add_argument("curves", help="sigma-curves.csv written by thetad tune")
-    parser.add_argument("out", help="output path without extension (an extension is dropped)")
-    style.add_format_option(parser)
-    arguments = parser.parse_args(argv[1:])
-    try:
-        style.apply()
-        stem = arguments.out.rsplit(".", 1)[0] if arguments.out.endswith(style.FORMATS) else arguments.out
-        style.save(draw_sigma_curves(*read_curves(arguments.curves)), stem, arguments.formats, dpi=200)
-    except (PlotError, ValueError) as e:
-        print(f"plot_tuning.py: error: {e}", file=sys.stderr)
-        return 1
-    return 0
+    return style.figure_command(argv, "plot_tuning.py", __doc__, "sigma-curves.csv written by thetad tune",
+                                read_curves, draw_sigma_curves)

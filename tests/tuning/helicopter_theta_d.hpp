@@ -14,6 +14,9 @@
 #include "controllers/theta_d.hpp"
 #include "core/helicopter/helicopter.hpp"
 #include "scenarios/scenario.hpp"
+#include "tuning/packed_series.hpp"
+#include "tuning/record.hpp"
+#include "tuning/sigma_fit.hpp"
 
 namespace thetad::testing {
 
@@ -45,5 +48,36 @@ struct HelicopterThetaD {
     return x;
   }
 };
+
+// 200 samples at 50 Hz along the excursion at hover input whose targets are the θ–D's own value
+// matrices at known k, l (by value_matrix, the flown code, not by the expansion the fits use): σ_max
+// in the record, the packed matrices in `packed` (P of the entry fit). A fit must find k, l again.
+struct ThetaDTargets {
+  tuning::TuningRecord record;
+  Eigen::MatrixXd packed;
+};
+
+inline ThetaDTargets theta_d_targets(const HelicopterThetaD& heli, const Eigen::VectorXd& k, const Eigen::VectorXd& l) {
+  ThetaDController truth = heli.make(3, k, l);
+  ThetaDTargets targets;
+  tuning::TuningRecord& record = targets.record;
+  record.scenario = "synthetic";
+  const int K = 200, n = heli.model.state_dim();
+  record.states.resize(n, K);
+  record.inputs.resize(heli.model.input_dim(), K);
+  record.sigma_sdre.resize(K);
+  targets.packed.resize(n * (n + 1) / 2, K);
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(n);
+  for (int i = 0; i < K; ++i) {
+    const double t = 0.02 * i;
+    record.time.push_back(t);
+    record.states.col(i) = heli.excursion(t);
+    record.inputs.col(i) = heli.hover_input;
+    const Eigen::MatrixXd P = truth.value_matrix(record.states.col(i), heli.hover_input, t);
+    record.sigma_sdre[i] = tuning::sigma_max_symmetric(solver, P);
+    tuning::pack_lower(P, targets.packed.col(i).data());
+  }
+  return targets;
+}
 
 }  // namespace thetad::testing

@@ -24,34 +24,17 @@ using Eigen::VectorXd;
 using ::testing::HasSubstr;
 namespace fs = std::filesystem;
 
-// A record whose targets are the θ–D's own σ_max at known k, l (by value_matrix, the flown code,
-// not by the expansion the fit uses): the fit must find them again.
-TuningRecord theta_d_targets(const testing::HelicopterThetaD& heli, const VectorXd& k, const VectorXd& l) {
-  ThetaDController truth = heli.make(3, k, l);
-  TuningRecord record;
-  record.scenario = "synthetic";
-  const int K = 200;
-  record.states.resize(heli.model.state_dim(), K);
-  record.inputs.resize(heli.model.input_dim(), K);
-  record.sigma_sdre.resize(K);
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(heli.model.state_dim());
-  for (int i = 0; i < K; ++i) {
-    const double t = 0.02 * i;
-    record.time.push_back(t);
-    record.states.col(i) = heli.excursion(t);
-    record.inputs.col(i) = heli.hover_input;
-    record.sigma_sdre[i] = sigma_max_symmetric(solver, truth.value_matrix(record.states.col(i), heli.hover_input, t));
-  }
-  return record;
+// The record of testing::theta_d_targets: σ_max of the θ–D's own value matrices at known k, l.
+TuningRecord sigma_targets(const testing::HelicopterThetaD& heli, const VectorXd& k, const VectorXd& l) {
+  return testing::theta_d_targets(heli, k, l).record;
 }
 
 TEST(SigmaFit, RecoversKnownParameters) {
   const testing::HelicopterThetaD heli;
   const VectorXd k_true = Eigen::Vector2d(0.6, 1.2), l_true = Eigen::Vector2d(1.8, 0.5);
-  const SigmaMatch match(heli.make(3), theta_d_targets(heli, k_true, l_true), 2);
-  FitOptions options;
-  options.weighting = Weighting::relative;  // the targets are exact: scale does not matter
-  const FitResult fit = tuning::fit(match, options);
+  const SigmaMatch match(heli.make(3), sigma_targets(heli, k_true, l_true), 2);
+  // The targets are exact: scale does not matter.
+  const FitResult fit = tuning::fit(match, Weighting::relative, FitOptions{});
   EXPECT_LT(fit.residual, 1e-20);
   EXPECT_LT(fit.residual, fit.start_residual);
   for (int i = 0; i < 2; ++i) {
@@ -63,7 +46,7 @@ TEST(SigmaFit, RecoversKnownParameters) {
 
 TEST(SigmaFit, ResidualIsBitIdenticalForAnyThreadCount) {
   const testing::HelicopterThetaD heli;
-  const TuningRecord record = theta_d_targets(heli, Eigen::Vector2d(0.6, 1.2), Eigen::Vector2d(1.8, 0.5));
+  const TuningRecord record = sigma_targets(heli, Eigen::Vector2d(0.6, 1.2), Eigen::Vector2d(1.8, 0.5));
   const VectorXd k = Eigen::Vector2d(0.9, 0.3), l = Eigen::Vector2d(4.0, 0.2);
   const double one = SigmaMatch(heli.make(3), record, 1).residual(k, l, Weighting::absolute);
   for (int threads : {2, 3, 5}) EXPECT_EQ(SigmaMatch(heli.make(3), record, threads).residual(k, l, Weighting::absolute), one);
@@ -80,7 +63,7 @@ TEST(SigmaFit, TunedResidualOnARealRecordIsNoWorse) {
   const TuningRecord record = record_sdre_flight(flight, dynamic_cast<const SdreController&>(*sdre.controller), 10, 2);
   ASSERT_EQ(record.size(), 300);
   const SigmaMatch match(heli.make(3), record, 2);
-  const FitResult fit = tuning::fit(match, FitOptions{});
+  const FitResult fit = tuning::fit(match, Weighting::absolute, FitOptions{});
   EXPECT_LE(fit.residual, fit.start_residual);
   const VectorXd ones = VectorXd::Ones(2);
   EXPECT_EQ(fit.start_residual, match.residual(ones, ones, Weighting::absolute));
@@ -145,32 +128,6 @@ TEST_F(RecordFile, BadFilesGiveClearErrors) {
   EXPECT_THAT(read_error(head_ + "0,1,x,3,4\n"), HasSubstr(":4: column 3: not a number"));
   EXPECT_THAT(read_error(head_ + "0,1,2,3,4\n0,1,2,3,4\n"), HasSubstr(":5: time does not increase"));
   EXPECT_THAT(read_error(head_), HasSubstr("no samples"));
-}
-
-TEST(FitOptionsCheck, BadOptionsGiveClearErrors) {
-  const auto error_of = [](const FitOptions& options, int parameters = 2) -> std::string {
-    try {
-      check_fit_options(options, parameters);
-    } catch (const Error& error) {
-      return error.what();
-    }
-    return "no error";
-  };
-  FitOptions o;
-  EXPECT_EQ(error_of(o), "no error");
-  o.algorithm = "LN_MAGIC";
-  EXPECT_THAT(error_of(o), HasSubstr("unknown algorithm 'LN_MAGIC' (known: LN_BOBYQA, "));
-  o = FitOptions{};
-  o.k_lower = 1.5;
-  o.k_upper = 0.0;
-  EXPECT_THAT(error_of(o), HasSubstr("the bounds of k are reversed"));
-  o = FitOptions{};
-  o.l_upper = std::nan("");
-  EXPECT_THAT(error_of(o), HasSubstr("the bounds of l must be finite"));
-  o = FitOptions{};
-  o.l_lower = 2.0;  // the start l = 1 lies outside
-  EXPECT_THAT(error_of(o), HasSubstr("the start l lies outside its bounds"));
-  EXPECT_THAT(error_of(FitOptions{}, 0), HasSubstr("nothing to tune"));
 }
 
 }  // namespace

@@ -65,6 +65,10 @@ TEST_F(TuneCommand, BadInputFailsWithOneLineAndWritesNothing) {
       {tune("--record " + path("columns.csv")), "columns.csv:3: wrong columns"},
       {tune("--record " + path("other.csv")), "recorded on scenario 'scenario-2', not 'climb'"},
       {tune("--holdout " + path("missing.yaml")), "missing.yaml"},
+      {tune("--objective entries --entry-floor 2"), "--entry-floor must lie in (0, 1], got 2"},
+      {tune("--seed 7 --holdout-seed 5 --holdout-draws 3"), "must not repeat a training draw, and seed 7 is in both"},
+      {tune("--max-seconds -1"), "--max-seconds"},
+      {tune("--objective speed"), "--objective"},
       {"tune --scenario " + path("missing.yaml") + " --out " + path("out"), "missing.yaml"},
   };
   for (const auto& c : cases) {
@@ -78,10 +82,12 @@ TEST_F(TuneCommand, BadInputFailsWithOneLineAndWritesNothing) {
 }
 
 TEST_F(TuneCommand, WritesASettingsFileThatRunAcceptsAndReusesItsRecord) {
-  const Output first = thetad(tune("--record " + path("record.csv")));
+  const Output first = thetad(tune("--record " + path("record.csv") + " --holdout-draws 3"));
   ASSERT_EQ(first.status, 0) << first.err;
-  EXPECT_THAT(first.out, HasSubstr("scenario=climb samples=200 terms=3 algorithm=LN_BOBYQA"));
-  EXPECT_THAT(first.out, HasSubstr("validation scenario=climb role=tuning theta_d=tuned status=\"completed\""));
+  EXPECT_THAT(first.out, HasSubstr("scenario=climb objective=sigma terms=3 algorithm=LN_BOBYQA samples=200 weighting=absolute"));
+  EXPECT_THAT(first.out, HasSubstr("validation scenario=climb role=tuning-scenario draws=3 first_seed=8 pairs=3"));
+  EXPECT_THAT(first.out, HasSubstr("validation scenario=climb metric=cost default_median="));
+  EXPECT_THAT(first.out, HasSubstr("validation scenario=climb metric=rms-error default_median="));
   for (const char* file : {"theta-d-tuned.yaml", "sigma-curves.csv", "tuning.json"}) EXPECT_TRUE(fs::exists(dir_ / "out" / file)) << file;
   EXPECT_TRUE(fs::exists(dir_ / "record.csv"));
 
@@ -89,18 +95,24 @@ TEST_F(TuneCommand, WritesASettingsFileThatRunAcceptsAndReusesItsRecord) {
                             path("out/theta-d-tuned.yaml") + " --out " + path("run"));
   EXPECT_EQ(run.status, 0) << run.err;
   // The settings file is a controller spec's file: default and tuned side by side, and the tuned
-  // one flies exactly what the tuner validated.
-  const Output compare = thetad("compare --scenario " + path("climb.yaml") + " --ideal --controllers paper=theta-d," +
+  // one flies exactly what the tuner validated on its first held-out draw.
+  const Output compare = thetad("compare --scenario " + path("climb.yaml") + " --ideal --seed 8 --controllers paper=theta-d," +
                                 "tuned=theta-d:" + path("out/theta-d-tuned.yaml") + " --out " + path("compare"));
   ASSERT_EQ(compare.status, 0) << compare.err;
   const auto tuning = nlohmann::json::parse(thetad::testing::read_text(dir_ / "out" / "tuning.json"));
   const auto tuned = nlohmann::json::parse(thetad::testing::read_text(dir_ / "compare" / "tuned.json"));
   EXPECT_EQ(tuned["controller_settings"]["k"], tuning["k"]);
   EXPECT_EQ(tuned["controller_settings"]["l"], tuning["l"]);
-  EXPECT_EQ(tuned["cost"]["J"], tuning["validation"][1]["cost"]);
-  EXPECT_EQ(tuning["validation"][1]["parameters"], "tuned");
-  // The fit's seed is the scenario's (7), not the command line's default.
+  const auto& validation = tuning["validation"][0];
+  EXPECT_EQ(validation["runs"][0]["seed"], 8);
+  EXPECT_EQ(tuned["cost"]["J"], validation["runs"][0]["tuned"]["cost"]);
+  // The report names the objective and its settings; the fit's seed is the scenario's (7), not
+  // the command line's default, and the held-out draws start after it.
+  EXPECT_EQ(tuning["objective"]["name"], "sigma");
+  EXPECT_EQ(tuning["objective"]["weighting"], "absolute");
   EXPECT_EQ(tuning["seed"], 7);
+  EXPECT_EQ(validation["role"], "tuning scenario");
+  EXPECT_EQ(validation["bootstrap"]["seed"], 7);
 
   // Reusing the record skips the flight and gives the same fit, bit for bit.
   const Output second = thetad(tune("--record " + path("record.csv") + " --no-validation"));
@@ -112,6 +124,38 @@ TEST_F(TuneCommand, WritesASettingsFileThatRunAcceptsAndReusesItsRecord) {
   };
   EXPECT_EQ(line(second.out, "k="), line(first.out, "k="));
   EXPECT_EQ(line(second.out, "l="), line(first.out, "l="));
+}
+
+// The other two objectives through the command: the report names each with its settings, and
+// the closed loop's held-out draws are not its training draws.
+TEST_F(TuneCommand, EntriesAndClosedLoopObjectivesAreReportedWithTheirSettings) {
+  const Output entries = thetad(tune("--objective entries --entry-floor 0.01 --holdout-draws 2 --max-evaluations 30"));
+  ASSERT_EQ(entries.status, 0) << entries.err;
+  EXPECT_THAT(entries.out, HasSubstr("objective=entries terms=3 algorithm=LN_BOBYQA samples=200 entry_floor=0.01"));
+  EXPECT_THAT(entries.out, HasSubstr("rms_relative_entry_error_default="));
+  auto report = nlohmann::json::parse(thetad::testing::read_text(dir_ / "out" / "tuning.json"));
+  EXPECT_EQ(report["objective"], (nlohmann::json{{"name", "entries"}, {"entry_floor", 0.01}, {"every", 10}}));
+  EXPECT_LE(report["evaluations"].get<int>(), 30);
+  EXPECT_LE(report["residual_tuned"].get<double>(), report["residual_default"].get<double>());
+  EXPECT_FALSE(fs::exists(dir_ / "out" / "sigma-curves.csv"));
+
+  // Without --ideal the draws differ; one second keeps it short.
+  const std::string closed_loop = "tune --scenario " + path("climb.yaml") + " --duration 1 --out " + path("loop") +
+                                  " --objective closed-loop --metric rms-error --draws 2 --holdout-draws 3 "
+                                  "--max-evaluations 5";
+  const Output loop = thetad(closed_loop);
+  ASSERT_EQ(loop.status, 0) << loop.err;
+  EXPECT_THAT(loop.out, HasSubstr("objective=closed-loop terms=3 algorithm=LN_COBYLA metric=rms-error training_draws=2"));
+  EXPECT_THAT(loop.out, HasSubstr("mean_rms_error_m_default="));
+  report = nlohmann::json::parse(thetad::testing::read_text(dir_ / "loop" / "tuning.json"));
+  EXPECT_EQ(report["objective"]["name"], "closed-loop");
+  EXPECT_EQ(report["objective"]["metric"], "rms-error");
+  EXPECT_EQ(report["objective"]["training_seeds"], (nlohmann::json{7, 8}));
+  EXPECT_LE(report["evaluations"].get<int>(), 5);
+  EXPECT_EQ(report["budget"]["evaluations"], 5);
+  std::vector<std::uint64_t> held_out;
+  for (const auto& run : report["validation"][0]["runs"]) held_out.push_back(run["seed"].get<std::uint64_t>());
+  EXPECT_EQ(held_out, (std::vector<std::uint64_t>{9, 10, 11}));
 }
 
 }  // namespace

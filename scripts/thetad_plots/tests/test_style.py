@@ -1,8 +1,9 @@
 """The shared style (thetad_plots.style)."""
 
+import numpy as np
 import pytest
 
-from thetad_plots import style, tuning
+from thetad_plots import approximation, style, tuning
 from thetad_plots.style import plt
 
 
@@ -52,3 +53,19 @@ def test_sigma_curves_figure(tmp_path):
     plt.close(fig)
     csv.write_text("t,sigma\n0,1\n")
     assert tuning.main(["plot_tuning.py", str(csv), str(tmp_path / "bad")]) == 1
+
+
+def test_approximation_figure(tmp_path):
+    csv = tmp_path / "approximation.csv"
+    csv.write_text(",".join(approximation.COLUMNS) + ",u_sdre_0,u_theta_d_0\n"
+                   "0,1e-6,0,2e-3,70,70.1\n0.01,2e-6,3e-7,1e-3,70,70.05\n0.02,4e-6,1e-7,5e-4,70,70.01\n")
+    assert approximation.main(["plot_approximation.py", str(csv), str(tmp_path / "errors"), "--format", "png"]) == 0
+    assert (tmp_path / "errors.png").exists()
+    fig = approximation.draw_errors(*approximation.read_errors(csv))
+    (ax,) = fig.axes
+    assert [l.get_label() for l in ax.get_lines()] == approximation.CURVES
+    assert ax.get_yscale() == "log" and ax.get_xlabel() == "time t (s)"
+    assert np.isnan(ax.get_lines()[1].get_ydata()[0])  # the exact zero is left out of the log axis
+    plt.close(fig)
+    csv.write_text("t_s,sigma\n0,1\n")
+    assert approximation.main(["plot_approximation.py", str(csv), str(tmp_path / "bad")]) == 1

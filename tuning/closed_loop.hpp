@@ -1,0 +1,66 @@
+#pragma once
+
+// The closed-loop objective for k_i, l_i: the θ–D flown through the experiment library over a set
+// of seeded draws of a scenario (parameter uncertainty, wind and noise of each seed), summary only,
+// scored by the mean of its cost J or of its RMS tracking error. It measures what a user of the
+// controller wants from the tuning; the matches of ΣT_i to P (sigma_fit, entry_fit) only hope for it.
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <yaml-cpp/yaml.h>
+
+#include "core/sim/simulator.hpp"
+#include "experiment/controller_spec.hpp"
+#include "experiment/flight.hpp"
+#include "experiment/run_controls.hpp"
+#include "tuning/search.hpp"
+
+namespace thetad::tuning {
+
+enum class Metric {
+  cost,       // J of Eq. (32) (sim::RunSummary::cost)
+  rms_error,  // the RMS 3-D position error: the norm of the per-axis RMS tracking errors (m)
+};
+const char* metric_name(Metric metric);  // "cost", "rms-error"
+// Throws thetad::Error naming the known metrics.
+Metric parse_metric(const std::string& name);
+// The metric of a run; +∞ unless it completed (a diverged draw is worse than any that flew).
+double metric_value(const sim::RunSummary& summary, Metric metric);
+// The mean metric over `summaries`; +∞ when one of them did not complete.
+double mean_metric(const std::vector<sim::RunSummary>& summaries, Metric metric);
+
+// The θ–D of `base` (a settings block, null: every default) with `terms` and k, l (empty: the
+// block's own, else the defaults), labelled `label`.
+ControllerSpec theta_d_spec(const YAML::Node& base, const std::string& label, int terms, const Eigen::VectorXd& k,
+                            const Eigen::VectorXd& l);
+
+// θ–D flights of one scenario over seeded draws, for any k, l, on `threads` workers (one Flight
+// each). The draws are cut into fixed chunks of one, so the results are the same for any number of
+// workers.
+class DrawFlights {
+ public:
+  // `controls` as for Flight; the runs are summary-only whatever controls.summary_only says.
+  // Throws thetad::Error for a bad scenario or controls, or a θ–D block that does not design.
+  DrawFlights(const std::string& scenario, RunControls controls, YAML::Node theta_d, int terms, int threads);
+
+  const Flight& flight() const { return *flights_.front(); }
+  int terms() const { return terms_; }
+
+  // The summaries of the θ–D with k, l (empty: the block's own) flown on each of `seeds`, in order.
+  std::vector<sim::RunSummary> fly(const Eigen::VectorXd& k, const Eigen::VectorXd& l,
+                                   const std::vector<std::uint64_t>& seeds);
+
+ private:
+  std::vector<std::unique_ptr<Flight>> flights_;  // one per worker: set_seed changes a Flight
+  YAML::Node theta_d_;
+  int terms_;
+};
+
+// Minimises mean_metric over the `training` draws with `fit` of search.hpp.
+FitResult fit(DrawFlights& flights, const std::vector<std::uint64_t>& training, Metric metric, const FitOptions& options);
+
+}  // namespace thetad::tuning
