@@ -158,4 +158,28 @@ TEST_F(TuneCommand, EntriesAndClosedLoopObjectivesAreReportedWithTheirSettings) 
   EXPECT_EQ(held_out, (std::vector<std::uint64_t>{9, 10, 11}));
 }
 
+// thetad approximation: bad input is one line and nothing written; a short flight writes the CSV
+// and the JSON with the quantiles and the provenance.
+TEST_F(TuneCommand, ApproximationWritesItsErrorsWithProvenance) {
+  const Output bad = thetad("approximation --scenario " + path("missing.yaml") + " --out " + path("approx"));
+  EXPECT_EQ(bad.status, 1);
+  EXPECT_THAT(bad.err, StartsWith("thetad: error: "));
+  EXPECT_FALSE(fs::exists(dir_ / "approx"));
+
+  const Output run = thetad("approximation --scenario " + path("climb.yaml") + " --duration 0.5 --out " + path("approx"));
+  ASSERT_EQ(run.status, 0) << run.err;
+  EXPECT_THAT(run.out, HasSubstr("scenario=climb duration_s=0.5 seed=7 samples=50"));
+  EXPECT_THAT(run.out, HasSubstr("control_relative median="));
+  const std::string csv = thetad::testing::read_text(dir_ / "approx" / "approximation.csv");
+  EXPECT_THAT(csv, StartsWith("t_s,frobenius_relative,sigma_relative,control_relative,u_sdre_0,"));
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 51);
+  const auto json = nlohmann::json::parse(thetad::testing::read_text(dir_ / "approx" / "approximation.json"));
+  EXPECT_EQ(json["errors"]["samples"], 50);
+  for (const char* name : {"frobenius", "sigma", "control"})
+    EXPECT_LE(json["errors"][name]["median"].get<double>(), json["errors"][name]["max"].get<double>()) << name;
+  EXPECT_EQ(json["theta_d_settings"]["terms"], 3);
+  EXPECT_EQ(json["provenance"]["scenario"]["name"], "climb");
+  EXPECT_EQ(json["provenance"]["scenario"]["sha256"].get<std::string>().size(), 64u);
+}
+
 }  // namespace
