@@ -5,8 +5,9 @@
 // defaults, as `thetad run` flies it (a controller registered later is timed without an edit
 // here). Besides, built directly: θ–D with N = 1 … 4 terms and 1 (one-step lag) or 3 (exact Ω,
 // spec §7.6) fixed-point passes; SDRE cold (solve_care: the matrix sign function, Schur as
-// fallback) and warm (Newton–Kleinman from the last P) with the same passes; and, as a reference
-// for the Riccati solver, the SDRE step with SLICOT's SB02MD in place of solve_care.
+// fallback) and warm (Newton–Kleinman from the last P) with the same passes; θ–D's 3-term step on
+// dynamic-size types; the plant's F, B; and, as a reference for the Riccati solver, the SDRE step
+// with SLICOT's SB02MD in place of solve_care.
 //
 // The fixed-point tolerance is 0 in those θ–D and SDRE rows, so that "3 passes" always means 3:
 // the cost of the variant, not of how fast one trajectory happens to converge. The registry's
@@ -128,12 +129,31 @@ Settings series_settings(const heli::Helicopter& model, int passes) {
   return s;
 }
 
-void theta_d_step(benchmark::State& state, int terms, int passes) {
+void theta_d_step(benchmark::State& state, int terms, int passes, bool fixed_size) {
   const Recording& r = recording();
   auto s = series_settings<thetad::ThetaDSettings>(r.model, passes);
   s.terms = terms;
+  s.fixed_size = fixed_size;
   thetad::ThetaDController controller(r.model, s);
   time_steps(state, controller);
+}
+
+// F(x), B(x) at the recorded states and inputs, rotor speed from T_mr included: the whole sdc(),
+// and what a controller's step calls (sdc_constant() once, then sdc_varying()).
+void sdc_evaluation(benchmark::State& state, bool varying_only) {
+  const Recording& r = recording();
+  Eigen::MatrixXd F(heli::kStateDim, heli::kStateDim), B(heli::kStateDim, heli::kInputDim);
+  r.model.sdc_constant(F, B);
+  std::size_t k = 0;
+  for (auto _ : state) {
+    const Sample& sample = r.samples[k];
+    if (varying_only) r.model.sdc_varying(sample.state, sample.input, F, B);
+    else r.model.sdc(sample.state, sample.input, F, B);
+    benchmark::DoNotOptimize(F.data());
+    benchmark::DoNotOptimize(B.data());
+    benchmark::ClobberMemory();
+    if (++k == r.samples.size()) k = 0;
+  }
 }
 
 void sdre_step(benchmark::State& state, thetad::SdreSettings::Mode mode, int passes) {
@@ -177,14 +197,19 @@ void register_benchmarks() {
     const std::string suffix = "/passes:" + std::to_string(passes);
     for (const int terms : {1, 2, 3, 4})
       benchmark::RegisterBenchmark(("theta-d/terms:" + std::to_string(terms) + suffix).c_str(), theta_d_step, terms,
-                                   passes)
+                                   passes, true)
           ->Unit(benchmark::kMicrosecond);
+    // The same step on dynamic-size types, as any plant other than the 18 × 5 helicopter runs.
+    benchmark::RegisterBenchmark(("theta-d-dynamic-size/terms:3" + suffix).c_str(), theta_d_step, 3, passes, false)
+        ->Unit(benchmark::kMicrosecond);
     benchmark::RegisterBenchmark(("sdre-cold" + suffix).c_str(), sdre_step, Mode::cold, passes)
         ->Unit(benchmark::kMicrosecond);
     benchmark::RegisterBenchmark(("sdre-warm" + suffix).c_str(), sdre_step, Mode::warm, passes)
         ->Unit(benchmark::kMicrosecond);
   }
   benchmark::RegisterBenchmark("sdre-sb02md/passes:1", sdre_step_sb02md)->Unit(benchmark::kMicrosecond);
+  benchmark::RegisterBenchmark("sdc", sdc_evaluation, false)->Unit(benchmark::kMicrosecond);
+  benchmark::RegisterBenchmark("sdc-varying", sdc_evaluation, true)->Unit(benchmark::kMicrosecond);
   for (const std::string& name : thetad::ControllerRegistry::instance().names())
     benchmark::RegisterBenchmark(name.c_str(), registered_step, name)->Unit(benchmark::kMicrosecond);
 }

@@ -49,6 +49,10 @@ struct ThetaDSettings {
   // input (spec §7.6); 1 is the one-step-lag variant. Stops early when max|Δu| < tolerance.
   int fixed_point_iterations = 3;
   double fixed_point_tolerance = 1e-6;
+  // Run the step on fixed-size Eigen types when the plant has the paper helicopter's dimensions
+  // (n = 18, m = 5); false takes the dynamic-size path that serves every other plant. The same
+  // arithmetic either way (a test compares the two); only the speed differs.
+  bool fixed_size = true;
 };
 
 class ThetaDController final : public Controller {
@@ -99,9 +103,12 @@ class ThetaDController final : public Controller {
   // else); or only (T_{N−1} v) on those rows, left in last_products_ (control, when the fixed
   // point makes several passes with one v: see projections_).
   enum class LastTerm { full, input_rows, input_row_products };
+  // The step is one implementation compiled twice: for N × M known at compile time (the
+  // helicopter's 18 × 5, on fixed-size views of the buffers below) and for Eigen::Dynamic.
   // One pass of spec §5.10 steps 1–2 at (x; input), time t: fills F_, B_, T_[1 … N−2] and the
   // last term as `wanted` asks if B(x) has no nonzero outside the input rows (else in full).
   // Returns the form it took.
+  template <int N, int M>
   LastTerm evaluate_series(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& input,
                            double t, LastTerm wanted);
   // How F(x; input), B(x; input) differ from A0, g0, for one pass of evaluate_series().
@@ -111,10 +118,15 @@ class ThetaDController final : public Controller {
   };
   // Evaluates the SDC into F_, B_ and gathers Ã (a_tilde_*), c of basis_ (coefficients_), g̃ L⁻ᵀ
   // and Z_[0].
+  template <int N, int M>
   Deviation gather_deviation(const Eigen::Ref<const Eigen::VectorXd>& x,
                              const Eigen::Ref<const Eigen::VectorXd>& input, LastTerm wanted);
   // W_i of term i ≥ 1 from T_0 … T_{i−1}, packed into packed_right_ (through M_).
+  template <int N, int M>
   void form_right_side(std::size_t i);
+  // The fixed-point passes of control() on v_, from guess_ (spec §7.6).
+  template <int N, int M>
+  void run_passes(double t, const Eigen::Ref<const Eigen::VectorXd>& x);
 
   // The part of reset() that needs T0 and Ac0: the packed Lyapunov inverse in the order below and
   // the solutions T1 for each varying coefficient.
@@ -128,7 +140,7 @@ class ThetaDController final : public Controller {
   void order_unknowns();
   // input_rows_ and, where they pay, the projections of the last term (see projections_).
   void prepare_projections();
-  // a_slot_, g_slot_ and basis_: T1 for each coefficient of `pattern` that varies.
+  // basis_ and the entries a pass reads c from: T1 for each coefficient of `pattern` that varies.
   void prepare_first_term_basis(const SdcPattern& pattern);
 
   const SdcPlant* model_;
@@ -158,11 +170,17 @@ class ThetaDController final : public Controller {
   Eigen::MatrixXd row_solutions_, projections_;
   Eigen::VectorXd last_products_;
   // T1 is linear in the coefficients of Ã and g̃ (Eq. 22b). For the K coefficients seen to vary
-  // at reset (slot ≥ 0 in column-major order; ~33 for the helicopter), T1 = e1 · basis_ · c,
-  // basis_ holding T1 for each unit coefficient. Kept only while K < n(n+1)/2, where one product
-  // with basis_ is cheaper than forming W1 and solving; otherwise every slot is −1.
-  std::vector<Eigen::Index> a_slot_, g_slot_;
+  // at reset (~33 for the helicopter), T1 = e1 · basis_ · c, basis_ holding T1 for each unit
+  // coefficient. Kept only while K < n(n+1)/2, where one product with basis_ is cheaper than
+  // forming W1 and solving; otherwise K = 0.
   Eigen::MatrixXd basis_;
+  // Where a pass reads c: the column-major index in F of slots 0 … a_basis_count_ − 1, in B of the
+  // others. 1 where an entry has no slot: there F, B must equal A0, g0 for T1 to be the product.
+  std::vector<Eigen::Index> basis_entries_;
+  Eigen::Index a_basis_count_ = 0;
+  Eigen::MatrixXd a_unseen_, g_unseen_;
+  Eigen::MatrixXd outside_input_rows_;  // n×m, 1 in the rows where B must be zero for input_rows
+  bool fixed_size_ = false;             // evaluate_series<18, 5>, else <Dynamic, Dynamic>
 
   // Per-step buffers, sized in the constructor or at reset.
   Eigen::MatrixXd F_, B_;
@@ -179,7 +197,7 @@ class ThetaDController final : public Controller {
   Eigen::MatrixXd M_;               // W_i = M + Mᵀ (spec §5.4)
   Eigen::MatrixXd left_, right_;    // the low-rank sums of M as one product left · rightᵀ
   Eigen::VectorXd packed_right_, packed_term_;
-  Eigen::VectorXd v_, value_gradient_, Bt_gradient_, guess_, update_, applied_;
+  Eigen::VectorXd v_, T0_v_, value_gradient_, Bt_gradient_, guess_, update_, applied_;
   int last_iterations_ = 0;
   double last_input_change_ = 0.0;
 };

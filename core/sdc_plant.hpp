@@ -55,6 +55,19 @@ class SdcPlant {
   virtual void sdc(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& u,
                    Eigen::Ref<Eigen::MatrixXd> F, Eigen::Ref<Eigen::MatrixXd> B) const = 0;
 
+  // sdc() in two parts, for a caller that evaluates F and B into the same buffers at every step:
+  // sdc_constant() once, then sdc_varying() per evaluation, which may leave the entries that
+  // sdc_constant() wrote (zeros and entries that depend on neither x nor u) as they are. The
+  // defaults write nothing once and everything each time, so a plant need not know about them.
+  virtual void sdc_constant(Eigen::Ref<Eigen::MatrixXd> F, Eigen::Ref<Eigen::MatrixXd> B) const {
+    (void)F;
+    (void)B;
+  }
+  virtual void sdc_varying(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& u,
+                           Eigen::Ref<Eigen::MatrixXd> F, Eigen::Ref<Eigen::MatrixXd> B) const {
+    sdc(x, u, F, B);
+  }
+
   Eigen::VectorXd f(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& u) const {
     Eigen::VectorXd xdot(state_dim());
     f(x, u, xdot);

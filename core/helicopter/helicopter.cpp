@@ -33,9 +33,33 @@ double rotor_speed_at(const Parameters& p, const ModelOptions& options, const Ai
   return main_rotor_speed(p, thrust, std::hypot(air.u_a, air.v_a), air.w_a, p.omega_nom);
 }
 
-// Eq. (29) and Eq. (30): every entry of spec §6.2 and §6.3, from the shared forces.
-void fill_sdc(const Parameters& p, const Forces& f, const Eigen::Ref<const Eigen::VectorXd>& x,
-              Eigen::Ref<Eigen::MatrixXd> F, Eigen::Ref<Eigen::MatrixXd> B) {
+// The entries of Eqs. (29)-(30) that no state, input or rotor speed changes (spec §6.2, §6.3),
+// zeros included: written once into a controller's buffers, then left alone by fill_varying_sdc.
+void fill_constant_sdc(const Parameters& p, double yaw_inertia, Eigen::Ref<Eigen::MatrixXd> F,
+                       Eigen::Ref<Eigen::MatrixXd> B) {
+  const double m = p.mass, ixx = p.ixx, iyy = p.iyy;
+  F.setZero();
+  B.setZero();
+  F(kPhi, kP) = 1.0;
+  F(kP, kB1) = p.k_beta / ixx;
+  F(kQ, kA1) = p.k_beta / iyy;
+  F(kA1, kQ) = -1.0;
+  F(kA1, kA1) = -1.0 / p.tau_e;
+  F(kB1, kP) = -1.0;
+  F(kB1, kB1) = -1.0 / p.tau_e;
+  F(kXi, kXp) = 1.0;  // rows 15-17: Eq. (9)
+  F(kYi, kYp) = 1.0;
+  F(kZi, kZp) = 1.0;
+  F(kS, kS) = -p.k_s;  // row 18: Eq. (26)
+  B(kV, kPed) = p.y_ped_tr;
+  B(kW, kTmr) = -1.0 / m;
+  B(kP, kPed) = p.h_tr * m * p.y_ped_tr / ixx;
+  B(kR, kPed) = -m * p.y_ped_tr * p.l_tr / yaw_inertia;
+}
+
+// Every other entry of Eqs. (29)-(30), from the shared forces.
+void fill_varying_sdc(const Parameters& p, const Forces& f, const Eigen::Ref<const Eigen::VectorXd>& x,
+                      Eigen::Ref<Eigen::MatrixXd> F, Eigen::Ref<Eigen::MatrixXd> B) {
   const AirData& a = f.air;
   const double s = x[kS];
   if (s == 0.0 || !std::isfinite(s)) {
@@ -43,8 +67,6 @@ void fill_sdc(const Parameters& p, const Forces& f, const Eigen::Ref<const Eigen
   }
   const double m = p.mass, g = p.gravity, ixx = p.ixx, iyy = p.iyy, izz_eff = f.yaw_inertia;
   const double pr = x[kP], qr = x[kQ], rr = x[kR];
-  F.setZero();
-  B.setZero();
 
   F.block<3, 3>(kXp, kU) = a.rotation;  // rows 1-3: Eq. (1)
   // Rows 4-6: omega-tilde (Eq. 3's -omega x V), gravity by sinc, biases in column 18.
@@ -60,7 +82,6 @@ void fill_sdc(const Parameters& p, const Forces& f, const Eigen::Ref<const Eigen
   F(kV, kS) = (f.y_fus + f.y_tr + f.y_vf) / (m * s);                  // a5_18
   F(kW, kS) = f.z_fus / (m * s) + g * a.cos_phi * a.cos_theta / s;    // a6_18
   // Rows 7-9: Eq. (5).
-  F(kPhi, kP) = 1.0;
   F(kPhi, kQ) = a.sin_phi * a.tan_theta;
   F(kPhi, kR) = a.cos_phi * a.tan_theta;
   F(kTheta, kQ) = a.cos_phi;
@@ -70,37 +91,22 @@ void fill_sdc(const Parameters& p, const Forces& f, const Eigen::Ref<const Eigen
   // Rows 10-12: Eq. (4), row 12 in the explicit form of A-10.
   F(kP, kQ) = rr * iyy / ixx;
   F(kP, kR) = -qr * p.izz / ixx;
-  F(kP, kB1) = p.k_beta / ixx;
   F(kP, kS) = (f.l_vf + f.l_tr) / (ixx * s);
   F(kQ, kP) = -rr * ixx / iyy;
   F(kQ, kR) = pr * p.izz / iyy;
-  F(kQ, kA1) = p.k_beta / iyy;
   F(kQ, kS) = f.m_ht / (iyy * s);
   F(kR, kP) = qr * ixx / izz_eff;
   F(kR, kQ) = -pr * iyy / izz_eff;
   F(kR, kS) = (f.n_vf + f.n_tr - f.q_mr - p.gear_tr * f.q_tr) / (izz_eff * s);
   // Rows 13-14: Eq. (6), resolved form of §2.5.
-  F(kA1, kQ) = -1.0;
-  F(kA1, kA1) = -1.0 / p.tau_e;
   F(kA1, kS) = f.a1_speed / s;
-  F(kB1, kP) = -1.0;
-  F(kB1, kB1) = -1.0 / p.tau_e;
   F(kB1, kS) = f.b1_speed / s;
-  // Rows 15-17: Eq. (9); row 18: Eq. (26).
-  F(kXi, kXp) = 1.0;
-  F(kYi, kYp) = 1.0;
-  F(kZi, kZp) = 1.0;
-  F(kS, kS) = -p.k_s;
 
   const double a1 = x[kA1], b1 = x[kB1];
   B(kU, kTmr) = -a1 / m;
   B(kV, kTmr) = b1 / m;  // b1/m, not the printed a1/m
-  B(kV, kPed) = p.y_ped_tr;
-  B(kW, kTmr) = -1.0 / m;
   B(kP, kTmr) = p.h_mr * b1 / ixx;
-  B(kP, kPed) = p.h_tr * m * p.y_ped_tr / ixx;
   B(kQ, kTmr) = p.h_mr * a1 / iyy;
-  B(kR, kPed) = -m * p.y_ped_tr * p.l_tr / izz_eff;
   B(kA1, kCol) = f.a1_per_collective;
   B(kA1, kLon) = f.a1_per_lon;
   B(kB1, kCol) = f.b1_per_collective;
@@ -163,13 +169,25 @@ void Helicopter::f(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<
 
 void Helicopter::sdc(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& u,
                      Eigen::Ref<Eigen::MatrixXd> F, Eigen::Ref<Eigen::MatrixXd> B) const {
+  sdc_constant(F, B);
+  sdc_varying(x, u, F, B);
+}
+
+void Helicopter::sdc_constant(Eigen::Ref<Eigen::MatrixXd> F, Eigen::Ref<Eigen::MatrixXd> B) const {
+  require_size("F", F.rows(), F.cols(), kStateDim, kStateDim);
+  require_size("B", B.rows(), B.cols(), kStateDim, kInputDim);
+  fill_constant_sdc(parameters_, parameters_.effective_yaw_inertia(options_.yaw_inertia), F, B);
+}
+
+void Helicopter::sdc_varying(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& u,
+                             Eigen::Ref<Eigen::MatrixXd> F, Eigen::Ref<Eigen::MatrixXd> B) const {
   require_size("state", x.rows(), x.cols(), kStateDim, 1);
   require_size("input", u.rows(), u.cols(), kInputDim, 1);
   require_size("F", F.rows(), F.cols(), kStateDim, kStateDim);
   require_size("B", B.rows(), B.cols(), kStateDim, kInputDim);
   const AirData air = air_data(environment_, x);
   const double omega = rotor_speed_at(parameters_, options_, air, u[kTmr]);
-  fill_sdc(parameters_, evaluate_forces(parameters_, options_, environment_, air, x, omega), x, F, B);
+  fill_varying_sdc(parameters_, evaluate_forces(parameters_, options_, environment_, air, x, omega), x, F, B);
 }
 
 void Helicopter::sdc_at_rotor_speed(const Eigen::Ref<const Eigen::VectorXd>& x, double rotor_speed,
@@ -178,7 +196,8 @@ void Helicopter::sdc_at_rotor_speed(const Eigen::Ref<const Eigen::VectorXd>& x, 
   require_size("F", F.rows(), F.cols(), kStateDim, kStateDim);
   require_size("B", B.rows(), B.cols(), kStateDim, kInputDim);
   const AirData air = air_data(environment_, x);
-  fill_sdc(parameters_, evaluate_forces(parameters_, options_, environment_, air, x, rotor_speed), x, F, B);
+  fill_constant_sdc(parameters_, parameters_.effective_yaw_inertia(options_.yaw_inertia), F, B);
+  fill_varying_sdc(parameters_, evaluate_forces(parameters_, options_, environment_, air, x, rotor_speed), x, F, B);
 }
 
 }  // namespace thetad::heli

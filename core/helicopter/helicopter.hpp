@@ -35,6 +35,11 @@ class Helicopter final : public SdcPlant {
          Eigen::Ref<Eigen::VectorXd> xdot) const override;
   void sdc(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& u,
            Eigen::Ref<Eigen::MatrixXd> F, Eigen::Ref<Eigen::MatrixXd> B) const override;
+  // sdc() in two parts: the zeros and the 15 entries set by the parameters alone, and the other
+  // 45 of the 414 (those that depend on x or, through the rotor speed, on u).
+  void sdc_constant(Eigen::Ref<Eigen::MatrixXd> F, Eigen::Ref<Eigen::MatrixXd> B) const override;
+  void sdc_varying(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& u,
+                   Eigen::Ref<Eigen::MatrixXd> F, Eigen::Ref<Eigen::MatrixXd> B) const override;
 
   // The rotor speed follows T_mr, except with the governor model.
   bool sdc_depends_on_input() const override {

@@ -151,6 +151,29 @@ TEST(HelicopterSdc, SincEntriesAreContinuousAtZero) {
   }
 }
 
+TEST(HelicopterSdc, ConstantPartOnceThenVaryingPartIsSdc) {
+  // A controller's hot path: sdc_constant() once into buffers of NaN, then sdc_varying() at every
+  // state writes all that sdc() writes, for every option set, so F x + B u == f holds through it.
+  for (const auto& [name, options] : option_sets()) {
+    Helicopter heli(kNominal, options);
+    Eigen::MatrixXd F = Eigen::MatrixXd::Constant(kStateDim, kStateDim, std::numeric_limits<double>::quiet_NaN());
+    Eigen::MatrixXd B = Eigen::MatrixXd::Constant(kStateDim, kInputDim, std::numeric_limits<double>::quiet_NaN());
+    heli.sdc_constant(F, B);
+    std::mt19937_64 rng(77);
+    for (int sample = 0; sample < 1000; ++sample) {
+      heli.set_environment(random_environment(rng));
+      const Eigen::VectorXd x = random_state(rng), u = random_input(rng);
+      heli.sdc_varying(x, u, F, B);
+      const SdcPlant::Coefficients full = heli.sdc(x, u);
+      ASSERT_EQ(F, full.F) << name << ", sample " << sample;
+      ASSERT_EQ(B, full.B) << name << ", sample " << sample;
+      const Eigen::VectorXd f = heli.f(x, u);
+      ASSERT_LE((F * x + B * u - f).lpNorm<Eigen::Infinity>() / std::max(1.0, f.lpNorm<Eigen::Infinity>()), 1e-12)
+          << name << ", sample " << sample;
+    }
+  }
+}
+
 TEST(HelicopterSdc, SdcEqualsSdcAtTheSolvedRotorSpeed) {
   Helicopter heli;
   std::mt19937_64 rng(5);
