@@ -1,11 +1,11 @@
 #include "apps/thetad/run_command.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <cstdio>
 
 #include "controllers/registry.hpp"
 #include "core/error.hpp"
+#include "core/sim/seed.hpp"
 #include "experiment/controller_spec.hpp"
 #include "experiment/plant_flight.hpp"
 #include "experiment/plant_registry.hpp"
@@ -18,13 +18,10 @@ namespace thetad::app {
 
 namespace {
 
-// An unsigned 64-bit decimal, whole: "-1", "" or a number beyond 2^64 - 1 are errors, not wraps.
 std::uint64_t parse_seed(const std::string& text) {
-  std::uint64_t value = 0;
-  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (text.empty() || error != std::errc() || end != text.data() + text.size())
-    throw CLI::ValidationError("--seed", "'" + text + "': expected a whole number from 0 to 18446744073709551615");
-  return value;
+  const std::optional<std::uint64_t> seed = sim::parse_seed(text);
+  if (!seed) throw CLI::ValidationError("--seed", "'" + text + "': " + std::string(sim::kSeedExpected));
+  return *seed;
 }
 
 void print_summary(const RunResult& result, const Flight& flight, const RunFiles& files) {
