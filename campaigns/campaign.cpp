@@ -157,8 +157,7 @@ Campaign parse_campaign(const std::string& text, const fs::path& file) {
     draws.allow_only({"count", "base_seed"});
     if (!draws.has("count")) throw draws.error("count", "missing (required)");
     campaign.draws = draws.integer("count", 0, 1, 1000000);
-    const int seed = draws.integer("base_seed", 1, 0);
-    campaign.base_seed = static_cast<std::uint64_t>(seed);
+    campaign.base_seed = draws.seed("base_seed", 1);
     campaign.summary_only = root.boolean("summary_only", true);
     campaign.cells = read_sweep(node["sweep"], read_fixed(node["fixed"]), campaign.swept);
     return campaign;

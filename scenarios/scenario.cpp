@@ -197,7 +197,7 @@ void read_simulation(const YAML::Node& root, Scenario& scenario) {
     }
     scenario.controller_period_steps = static_cast<int>(steps);
   }
-  if (simulation.has("seed")) scenario.seed = static_cast<std::uint64_t>(simulation.integer("seed", 1, 0));
+  if (simulation.has("seed")) scenario.seed = simulation.seed("seed", 1);
 
   const Settings disturbances(child(node, "disturbances"), "simulation.disturbances");
   disturbances.allow_only({"parameter_uncertainty", "wind_gust", "measurement_noise", "measurement_noise_on",

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "core/sim/seed.hpp"
+
 namespace thetad {
 
 namespace {
@@ -143,6 +145,14 @@ int Settings::integer(const std::string& key, int fallback, int min, int max) co
                          std::to_string(value));
   }
   return recorded(key, value);
+}
+
+std::uint64_t Settings::seed(const std::string& key, std::uint64_t fallback) const {
+  if (!has(key)) return recorded(key, fallback);
+  const YAML::Node node = node_[key];
+  const std::optional<std::uint64_t> value = node.IsScalar() ? sim::parse_seed(node.Scalar()) : std::nullopt;
+  if (!value) throw error(key, std::string(sim::kSeedExpected) + ", got " + kind_of(node));
+  return recorded(key, *value);
 }
 
 bool Settings::boolean(const std::string& key, bool fallback) const {

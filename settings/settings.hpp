@@ -14,6 +14,7 @@
 // A factory does not know which file its block came from; the caller that does (the command line)
 // adds it with with_settings_source().
 
+#include <cstdint>
 #include <initializer_list>
 #include <limits>
 #include <memory>
@@ -88,6 +89,8 @@ class Settings {
   // An integer in [min, max] ("3.0" is not an integer).
   int integer(const std::string& key, int fallback, int min = std::numeric_limits<int>::min(),
               int max = std::numeric_limits<int>::max()) const;
+  // A seed: a whole decimal number from 0 to 2^64 - 1 (sim::parse_seed), never wrapped or saturated.
+  std::uint64_t seed(const std::string& key, std::uint64_t fallback) const;
   // true/false (also yes/no, on/off as YAML 1.1 reads them).
   bool boolean(const std::string& key, bool fallback) const;
   std::string string(const std::string& key, const std::string& fallback) const;

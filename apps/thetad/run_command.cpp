@@ -1,11 +1,11 @@
 #include "apps/thetad/run_command.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <cstdio>
 
 #include "controllers/registry.hpp"
 #include "core/error.hpp"
+#include "core/sim/seed.hpp"
 #include "experiment/controller_spec.hpp"
 #include "experiment/plant_flight.hpp"
 #include "experiment/plant_registry.hpp"
@@ -97,11 +97,9 @@ int run_plant(const RunArguments& arguments) {
 }  // namespace
 
 std::uint64_t parse_seed(const std::string& text, const std::string& option) {
-  std::uint64_t value = 0;
-  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (text.empty() || error != std::errc() || end != text.data() + text.size())
-    throw CLI::ValidationError(option, "'" + text + "': expected a whole number from 0 to 18446744073709551615");
-  return value;
+  const std::optional<std::uint64_t> seed = sim::parse_seed(text);
+  if (!seed) throw CLI::ValidationError(option, "'" + text + "': " + std::string(sim::kSeedExpected));
+  return *seed;
 }
 
 void add_flight_options(CLI::App& command, FlightOptions& options, bool scenario_required) {

@@ -190,4 +190,62 @@ TEST_F(HostileInput, AFileSizeLimitWhileWritingIsAClearErrorAndLeavesNoPartialFi
   EXPECT_TRUE(fs::is_empty(dir_ / "out")) << "a partial or unpaired file was left behind";
 }
 
+// The command prefix that runs a command in a private mount namespace, where it may mount a small
+// or a read-only file system that no other process sees: as root (`unshare --mount`), else in a
+// user namespace that maps the caller to root. Empty when neither is allowed here.
+std::string private_mount_namespace() {
+  for (const char* unshare : {"unshare --mount", "unshare --user --map-root-user --mount"}) {
+    if (std::system((std::string(unshare) + " true >/dev/null 2>&1").c_str()) == 0) return unshare;
+  }
+  return {};
+}
+
+// Runs thetad with `arguments` after `mount` (shell commands) in a private mount namespace, and
+// writes what is left in `folder` when thetad has ended (the mounts end with the namespace) to
+// left.txt.
+Output run_in_private_mounts(const fs::path& dir, const std::string& unshare, const std::string& mount,
+                             const std::string& folder, const std::string& arguments) {
+  const std::string launcher = unshare + " sh -c '" + mount + " && \"$0\" \"$@\"; status=$?; ls -A " + folder +
+                               " >" + (dir / "left.txt").string() + "; exit $status' ";
+  return thetad::testing::run_thetad(dir, arguments, "", {}, launcher);
+}
+
+TEST_F(HostileInput, AFullDiskWhileWritingIsAClearErrorAndLeavesNoPartialFile) {
+  const std::string unshare = private_mount_namespace();
+  if (unshare.empty()) GTEST_SKIP() << "no private mount namespace here (unshare --mount is not permitted) to mount a small file system";
+  // A 16 KiB file system: the output folder and its probe fit, the log of 200 samples does not.
+  fs::create_directory(dir_ / "disk");
+  const std::string disk = path("disk");
+  const Output output =
+      run_in_private_mounts(dir_, unshare, "mount -t tmpfs -o size=16k tmpfs " + disk, disk + "/out",
+                            "run --scenario " + path("hover.yaml") + " --controller lqr --out " + disk + "/out");
+  EXPECT_EQ(output.status, 1) << output.err;
+  EXPECT_THAT(output.err, HasSubstr("thetad: error: cannot write " + disk + "/out/lqr.csv: No space left on device"));
+  EXPECT_EQ(thetad::testing::read_text(dir_ / "left.txt"), "") << "a partial or unpaired file was left behind";
+}
+
+TEST_F(HostileInput, AReadOnlyOutputFolderIsAnErrorBeforeFlying) {
+  const std::string unshare = private_mount_namespace();
+  if (unshare.empty()) GTEST_SKIP() << "no private mount namespace here (unshare --mount is not permitted) to mount a read-only file system";
+  // Read-only for root too: a file system mounted read-only, with the output folder already on it.
+  fs::create_directory(dir_ / "disk");
+  const std::string disk = path("disk");
+  const std::string mount = "mount -t tmpfs -o size=1m tmpfs " + disk + " && mkdir " + disk + "/out && mount -o remount,ro " + disk;
+  Output output = run_in_private_mounts(dir_, unshare, mount, disk + "/out",
+                                        "run --scenario " + path("hover.yaml") + " --controller lqr --out " + disk + "/out");
+  EXPECT_EQ(output.status, 1) << output.err;
+  EXPECT_THAT(output.err, MatchesRegex("thetad: error: [^\n]*\n")) << output.err;
+  EXPECT_THAT(output.err, HasSubstr("--out " + disk + "/out: cannot write there: Read-only file system"));
+  EXPECT_EQ(output.out, "") << "flew before finding that it could not write";
+  EXPECT_EQ(thetad::testing::read_text(dir_ / "left.txt"), "");
+
+  // An output folder still to be made on a read-only file system.
+  output = run_in_private_mounts(dir_, unshare, mount, disk,
+                                 "run --scenario " + path("hover.yaml") + " --controller lqr --out " + disk + "/new");
+  EXPECT_EQ(output.status, 1) << output.err;
+  EXPECT_THAT(output.err, HasSubstr("--out " + disk + "/new: cannot create the folder: Read-only file system"));
+  EXPECT_EQ(output.out, "");
+  EXPECT_EQ(thetad::testing::read_text(dir_ / "left.txt"), "out\n");
+}
+
 }  // namespace

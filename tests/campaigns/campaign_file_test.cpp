@@ -71,6 +71,23 @@ TEST(CampaignFile, AListGivesItsCellsAndNoSweepGivesOneCell) {
   EXPECT_EQ(single.run_count(), 6);
 }
 
+// base_seed is an unsigned 64-bit number like --seed: all of it is read, and what is not a whole
+// number in range is an error (not wrapped, not saturated, not cut to an int).
+TEST(CampaignFile, TheBaseSeedIsAnyUnsigned64BitNumberAndNothingElse) {
+  const auto with_seed = [](const std::string& seed) {
+    return "campaign: x\nscenarios: [scenario-1]\ncontrollers: [{controller: lqr}]\ndraws: {count: 1, base_seed: " +
+           seed + "}\n";
+  };
+  EXPECT_EQ(parse_campaign(with_seed("18446744073709551615"), kFile).base_seed, 18446744073709551615u);
+  EXPECT_EQ(parse_campaign(with_seed("4294967296"), kFile).base_seed, 4294967296u);
+  EXPECT_EQ(parse_campaign(with_seed("0"), kFile).base_seed, 0u);
+  for (const std::string seed : {"-1", "18446744073709551616", "''", "1.5", "0x10", "[1]"}) {
+    EXPECT_THAT(error_of(with_seed(seed)), AllOf(HasSubstr(kFile.string() + ":4:30: field 'draws.base_seed'"),
+                                                 HasSubstr("expected a whole number from 0 to 18446744073709551615")))
+        << seed;
+  }
+}
+
 TEST(CampaignFile, ErrorsNameTheFileTheLineAndTheField) {
   const std::string file = kFile.string();
   EXPECT_THAT(error_of(kHead + "drwas: 3\n"),

@@ -98,14 +98,15 @@ TEST(Scenario, HoverStepAndFastForwardLoad) {
 
 TEST(Scenario, SimulationOverridesApply) {
   const Scenario scenario = parse_scenario(kHeader + kTakeoff + kHover +
-                                               "simulation:\n  dt: 0.002\n  controller_period_steps: 2\n  seed: 7\n"
+                                               "simulation:\n  dt: 0.002\n  controller_period_steps: 2\n"
+                                               "  seed: 18446744073709551615\n"
                                                "  disturbances:\n    wind_gust: off\n    measurement_noise: false\n"
                                                "  model:\n    preset: paper\n    yaw_inertia: izz\n",
                                            "test.yaml");
   const sim::SimulationSettings settings = scenario.simulation_settings();
   EXPECT_EQ(settings.dt, 0.002);
   EXPECT_EQ(settings.controller_period_steps, 2);
-  EXPECT_EQ(settings.seed, 7u);
+  EXPECT_EQ(settings.seed, 18446744073709551615u);  // the whole unsigned 64-bit range
   EXPECT_FALSE(settings.wind_gust.enabled);
   EXPECT_FALSE(settings.noise.measurement);
   EXPECT_TRUE(settings.noise.actuator);
