@@ -30,7 +30,7 @@ build: deps
 test: build
 	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
 
-# The sanitizer subset (CI; docs/reliability.md): the unit tests of the numerics, the simulator and
+# The sanitizer subset (docs/reliability.md): the unit tests of the numerics, the simulator and
 # the readers, and the fuzz replays, under ASan and UBSan; builds only what they need.
 sanitize: deps
 	cmake -S . -B $(SANITIZE_DIR) $(SANITIZE_FLAGS)
