@@ -180,6 +180,9 @@ class ThetaDController final : public Controller {
   Eigen::Index a_basis_count_ = 0;
   Eigen::MatrixXd a_unseen_, g_unseen_;
   Eigen::MatrixXd outside_input_rows_;  // n×m, 1 in the rows where B must be zero for input_rows
+  // The paper's helicopter: its step runs on fixed-size views (ThetaDSettings::fixed_size).
+  static constexpr int kFixedStates = 18;
+  static constexpr int kFixedInputs = 5;
   bool fixed_size_ = false;             // evaluate_series<18, 5>, else <Dynamic, Dynamic>
 
   // Per-step buffers, sized in the constructor or at reset.

@@ -1,0 +1,215 @@
+#include "controllers/theta_d.hpp"
+
+// The per-step half of ThetaDController (theta_d.hpp): one pass of the series and the fixed point
+// over it, compiled for the helicopter's fixed sizes and for dynamic ones; theta_d.cpp holds the
+// settings and the design done at reset.
+
+#include <cmath>
+#include <string>
+
+#include "core/error.hpp"
+
+namespace thetad {
+
+namespace {
+
+// A dynamic buffer seen as Rows × Cols at compile time where they are fixed (sizes checked by Eigen
+// in debug builds); Eigen::Dynamic keeps it dynamic.
+template <int Rows, int Cols>
+Eigen::Map<Eigen::Matrix<double, Rows, Cols>> view(Eigen::MatrixXd& a) {
+  return {a.data(), a.rows(), a.cols()};
+}
+template <int Rows, int Cols>
+Eigen::Map<const Eigen::Matrix<double, Rows, Cols>> view(const Eigen::MatrixXd& a) {
+  return {a.data(), a.rows(), a.cols()};
+}
+template <int Rows>
+Eigen::Map<Eigen::Matrix<double, Rows, 1>> view(Eigen::VectorXd& a) {
+  return {a.data(), a.size()};
+}
+template <int Rows>
+Eigen::Map<const Eigen::Matrix<double, Rows, 1>> view(const Eigen::VectorXd& a) {
+  return {a.data(), a.size()};
+}
+
+// Every entry exactly 0, by one vectorised sum of magnitudes: a sum of nonnegative terms is 0 only
+// if each is (no underflow in adding them), and a NaN or an infinity makes it nonzero.
+template <class Derived>
+bool all_zero(const Eigen::MatrixBase<Derived>& a) {
+  return a.cwiseAbs().sum() == 0.0;
+}
+
+}  // namespace
+
+template <int N, int M>
+ThetaDController::Deviation ThetaDController::gather_deviation(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                                                const Eigen::Ref<const Eigen::VectorXd>& input,
+                                                                LastTerm wanted) {
+  const Eigen::Index n = F_.rows();
+  model_->sdc_varying(x, input, F_, B_);
+  const auto F = view<N, N>(F_);
+  const auto B = view<N, M>(B_);
+  // Eq. (31) with θ = 1 (spec §5.7): Ã = F − A0 kept as its nonzero coefficients, g̃ = B − g0
+  // scaled by L⁻ᵀ. T1 = e1 · basis_ · c needs every nonzero of Ã and g̃ to have a slot: one
+  // vectorised comparison of the entries without one, then c read from its entries alone.
+  Deviation deviation{all_zero((F - view<N, N>(A0_)).cwiseProduct(view<N, N>(a_unseen_))) &&
+                          all_zero((B - view<N, M>(g0_)).cwiseProduct(view<N, M>(g_unseen_))),
+                      wanted != LastTerm::full && T_.size() > 1 &&
+                          all_zero(B.cwiseProduct(view<N, M>(outside_input_rows_)))};
+  a_tilde_count_ = 0;
+  auto add_a_tilde = [&](Eigen::Index entry, double value) {
+    a_tilde_rows_[a_tilde_count_] = entry % n;
+    a_tilde_cols_[a_tilde_count_] = entry / n;
+    a_tilde_values_[a_tilde_count_++] = value;
+  };
+  if (deviation.in_basis) {
+    for (Eigen::Index k = 0; k < coefficients_.size(); ++k) {
+      const Eigen::Index entry = basis_entries_[static_cast<std::size_t>(k)];
+      if (k < a_basis_count_) {
+        coefficients_[k] = F_.data()[entry] - A0_.data()[entry];
+        if (coefficients_[k] != 0.0) add_a_tilde(entry, coefficients_[k]);
+      } else {
+        coefficients_[k] = B_.data()[entry] - g0_.data()[entry];
+      }
+    }
+  } else {
+    for (Eigen::Index entry = 0; entry < n * n; ++entry) {
+      const double value = F_.data()[entry] - A0_.data()[entry];
+      if (value != 0.0) add_a_tilde(entry, value);
+    }
+  }
+  auto g_tilde_scaled = view<N, M>(g_tilde_scaled_);
+  g_tilde_scaled.noalias() = B * view<M, M>(R_inverse_sqrt_t_);
+  g_tilde_scaled -= view<N, M>(g0_scaled_);
+  view<N, M>(Z_[0]).noalias() = view<N, N>(T_[0]) * g_tilde_scaled;
+  return deviation;
+}
+
+template <int N, int M>
+void ThetaDController::form_right_side(std::size_t i) {
+  const Eigen::Index n = F_.rows(), m = B_.cols(), unknowns = n * (n + 1) / 2;
+  // Eqs. (22b–d) for general i (spec §5.4), W_i = M + Mᵀ with
+  //   M = −T_{i−1} Ã + Σ_{j<i} T_j g0 R⁻¹ g̃ᵀ T_{i−1−j} + ½ Σ_{j≤i−2} T_j S2 T_{i−2−j} + ½ Σ_{1≤j<i} T_j G0 T_{i−j}:
+  // the S1 sum is X + Xᵀ of its first half, the S2 and G0 sums are symmetric on their own.
+  // S1, S2, G0 enter only through the rank-m factors Y_j = T_j g0 L⁻ᵀ and Z_j = T_j g̃ L⁻ᵀ,
+  // gathered side by side so that the sums are one product.
+  const auto previous = view<N, N>(T_[i - 1]);
+  auto sum = view<N, N>(M_);
+  sum.setZero();
+  for (std::size_t k = 0; k < a_tilde_count_; ++k)
+    sum.col(a_tilde_cols_[k]) -= a_tilde_values_[k] * previous.col(a_tilde_rows_[k]);
+  auto left = view<N, Eigen::Dynamic>(left_);
+  auto right = view<N, Eigen::Dynamic>(right_);
+  Eigen::Index rank = 0;
+  auto add = [&](double weight, const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
+    left.template middleCols<M>(rank, m) = weight * view<N, M>(a);
+    right.template middleCols<M>(rank, m) = view<N, M>(b);
+    rank += m;
+  };
+  for (std::size_t j = 0; j < i; ++j) add(1.0, Y_[j], Z_[i - 1 - j]);
+  for (std::size_t j = 0; j + 2 <= i; ++j) add(0.5, Z_[j], Z_[i - 2 - j]);
+  for (std::size_t j = 1; j < i; ++j) add(0.5, Y_[j], Y_[i - j]);
+  sum.noalias() += left.leftCols(rank) * right.leftCols(rank).transpose();
+  for (Eigen::Index a = 0; a < unknowns; ++a)
+    packed_right_[a] = sum(unknown_row_[a], unknown_col_[a]) + sum(unknown_col_[a], unknown_row_[a]);
+}
+
+template <int N, int M>
+ThetaDController::LastTerm ThetaDController::evaluate_series(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                                             const Eigen::Ref<const Eigen::VectorXd>& input, double t,
+                                                             LastTerm wanted) {
+  const Eigen::Index n = F_.rows(), unknowns = n * (n + 1) / 2;
+  const Deviation deviation = gather_deviation<N, M>(x, input, wanted);
+  for (std::size_t i = 1; i < T_.size(); ++i) {
+    const bool last_term = i + 1 == T_.size();
+    const LastTerm form = last_term && deviation.input_rows_only ? wanted : LastTerm::full;
+    const Eigen::Index solved = form == LastTerm::input_rows ? input_row_unknowns_ : unknowns;
+    // Eqs. (24)–(25): T_i Ac0 + Ac0ᵀ T_i = e_i(t) W_i.
+    const double e = perturbation_factor(settings_.k[static_cast<Eigen::Index>(i - 1)],
+                                         settings_.l[static_cast<Eigen::Index>(i - 1)], t - t0_);
+    if (i == 1 && deviation.in_basis) {
+      packed_term_.head(solved).noalias() = e * (basis_.topRows(solved) * coefficients_);
+    } else {
+      form_right_side<N, M>(i);
+      if (form == LastTerm::input_row_products) {
+        last_products_.noalias() = e * (projections_.transpose() * packed_right_);
+        return form;
+      }
+      packed_term_.head(solved).noalias() = e * (lyapunov_inverse_.topRows(solved) * packed_right_);
+    }
+    if (form == LastTerm::input_rows) return form;
+    auto term = view<N, N>(T_[i]);
+    for (Eigen::Index a = 0; a < unknowns; ++a) {
+      term(unknown_row_[a], unknown_col_[a]) = packed_term_[a];
+      term(unknown_col_[a], unknown_row_[a]) = packed_term_[a];
+    }
+    if (last_term) break;  // Y, Z of the last term enter no W
+    view<N, M>(Y_[i]).noalias() = term * view<N, M>(g0_scaled_);
+    view<N, M>(Z_[i]).noalias() = term * view<N, M>(g_tilde_scaled_);
+  }
+  return LastTerm::full;
+}
+
+Eigen::MatrixXd ThetaDController::value_matrix(const Eigen::VectorXd& x, const Eigen::VectorXd& input, double t) {
+  require_reset("value_matrix");
+  if (x.size() != F_.rows() || input.size() != B_.cols())
+    throw Error("theta-d: value_matrix needs a state of " + std::to_string(F_.rows()) + " and an input of " +
+                std::to_string(B_.cols()) + " entries");
+  if (fixed_size_) evaluate_series<kFixedStates, kFixedInputs>(x, input, t, LastTerm::full);
+  else evaluate_series<Eigen::Dynamic, Eigen::Dynamic>(x, input, t, LastTerm::full);
+  Eigen::MatrixXd sum = T_[0];
+  for (std::size_t i = 1; i < T_.size(); ++i) sum += T_[i];
+  return sum;
+}
+
+void ThetaDController::control(double t, const Eigen::Ref<const Eigen::VectorXd>& measured_state,
+                               const Reference& reference, Eigen::Ref<Eigen::VectorXd> u) {
+  require_reset("control");
+  model_->tracking_vector(measured_state, reference, v_);
+  // Spec §7.6: start from the input applied at the previous sample.
+  guess_ = applied_;
+  if (fixed_size_) run_passes<kFixedStates, kFixedInputs>(t, measured_state);
+  else run_passes<Eigen::Dynamic, Eigen::Dynamic>(t, measured_state);
+  applied_ = guess_;
+  u = guess_;
+}
+
+template <int N, int M>
+void ThetaDController::run_passes(double t, const Eigen::Ref<const Eigen::VectorXd>& x) {
+  // One pass is exact when the SDC does not depend on the input.
+  const int passes = model_->sdc_depends_on_input() ? settings_.fixed_point_iterations : 1;
+  const LastTerm wanted = project_last_term_ ? LastTerm::input_row_products : LastTerm::input_rows;
+  const Eigen::Index n = v_.size();
+  const auto v = view<N>(v_);
+  // What every pass shares: v, hence T0 v and the forms that give the last term on the input rows.
+  view<N>(T0_v_).noalias() = view<N, N>(T_[0]) * v;
+  for (std::size_t k = 0; project_last_term_ && k < input_rows_.size(); ++k)
+    projections_.col(static_cast<Eigen::Index>(k)).noalias() =
+        row_solutions_.middleCols(static_cast<Eigen::Index>(k) * n, n) * v_;
+  auto value_gradient = view<N>(value_gradient_);
+  for (last_iterations_ = 1;; ++last_iterations_) {
+    const LastTerm formed = evaluate_series<N, M>(x, guess_, t, wanted);
+    // Eq. (35): u = −R⁻¹ Bᵀ(x) (Σ T_i) V_track.
+    const std::size_t full_terms = formed == LastTerm::full ? T_.size() : T_.size() - 1;
+    value_gradient = view<N>(T0_v_);
+    for (std::size_t i = 1; i < full_terms; ++i) value_gradient.noalias() += view<N, N>(T_[i]) * v;
+    // The last term on the input rows only: the rows of B(x) outside them are zero, so the
+    // partial sums this leaves in the other entries of the gradient are multiplied by zero.
+    if (formed == LastTerm::input_rows)
+      for (Eigen::Index a = 0; a < input_row_unknowns_; ++a) {
+        const Eigen::Index i = unknown_row_[a], j = unknown_col_[a];
+        value_gradient[i] += packed_term_[a] * v[j];
+        if (i != j) value_gradient[j] += packed_term_[a] * v[i];
+      }
+    if (formed == LastTerm::input_row_products)
+      for (std::size_t k = 0; k < input_rows_.size(); ++k)
+        value_gradient[input_rows_[k]] += last_products_[static_cast<Eigen::Index>(k)];
+    view<M>(Bt_gradient_).noalias() = view<N, M>(B_).transpose() * value_gradient;
+    view<M>(update_).noalias() = -view<M, M>(R_inverse_) * view<M>(Bt_gradient_);
+    last_input_change_ = (update_ - guess_).cwiseAbs().maxCoeff();
+    guess_ = update_;
+    if (last_iterations_ >= passes || last_input_change_ < settings_.fixed_point_tolerance) break;
+  }
+}
+
+}  // namespace thetad
