@@ -15,6 +15,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// Caps that keep a typo from asking for the impossible (docs/campaigns.md): a grid is expanded in
+// memory, and a billion runs is decades of flights at a second each.
+constexpr std::size_t kMaxCells = 1000000;
+constexpr double kMaxRuns = 1e9;
+
 // A scenario as the campaign names it: a file relative to the campaign file's folder, or a shipped
 // name. Resolved to what find_scenario accepts, so the campaign flies the same file from any folder.
 std::string resolve_scenario(const std::string& given, const fs::path& campaign_file) {
@@ -99,6 +104,10 @@ std::vector<FactorValues> read_sweep(const YAML::Node& node, const FactorValues&
       check_not_fixed(name, field, axis.first.Mark());
       if (!axis.second.IsSequence() || axis.second.size() == 0)
         throw SettingsError(field, "expected a non-empty list of values", axis.second.Mark());
+      if (cells.size() * axis.second.size() > kMaxCells)
+        throw SettingsError(field, "the grid would have " + std::to_string(cells.size() * axis.second.size()) +
+                                       " cells, more than the " + std::to_string(kMaxCells) + " a campaign may have",
+                            axis.second.Mark());
       std::vector<FactorValues> next;
       for (const FactorValues& cell : cells) {
         for (std::size_t i = 0; i < axis.second.size(); ++i) {
@@ -160,6 +169,15 @@ Campaign parse_campaign(const std::string& text, const fs::path& file) {
     campaign.base_seed = draws.seed("base_seed", 1);
     campaign.summary_only = root.boolean("summary_only", true);
     campaign.cells = read_sweep(node["sweep"], read_fixed(node["fixed"]), campaign.swept);
+    // In floating point: the product of four counts read from the file may not fit in 64 bits.
+    const double runs = static_cast<double>(campaign.cells.size()) * static_cast<double>(campaign.scenarios.size()) *
+                        static_cast<double>(campaign.controllers.size()) * campaign.draws;
+    if (runs > kMaxRuns) {
+      std::ostringstream reason;
+      reason << "the campaign would fly " << runs << " runs (cells x scenarios x controllers x draws), more than "
+             << kMaxRuns;
+      throw draws.error("count", reason.str());
+    }
     return campaign;
   });
 }

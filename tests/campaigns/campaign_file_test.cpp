@@ -116,6 +116,26 @@ TEST(CampaignFile, ErrorsNameTheFileTheLineAndTheField) {
   EXPECT_THAT(error_of("campaign: [unclosed\n"), HasSubstr(file + ":"));
 }
 
+// Caught before the grid is expanded in memory, and before the run count could overflow.
+TEST(CampaignFile, AHugeGridOrRunCountIsRefusedUpFront) {
+  std::string values = "[0";
+  for (int i = 1; i < 101; ++i) values += ", " + std::to_string(i / 100.0);
+  values += "]";
+  std::string grid = "sweep:\n  grid:\n";
+  for (const char* factor : {"uncertainty_scale", "gust_scale", "noise_scale"})
+    grid += std::string("    ") + factor + ": " + values + "\n";
+  EXPECT_THAT(error_of(kHead + grid),
+              AllOf(HasSubstr(kFile.string() + ":11:18: field 'sweep.grid.noise_scale'"),
+                    HasSubstr("would have 1030301 cells, more than the 1000000")));
+  const std::string many_draws = R"(campaign: x
+scenarios: [scenario-1]
+controllers: [{controller: lqr}, {controller: theta-d}]
+draws: {count: 1000000}
+sweep: {grid: {gust_scale: )" + values + ", noise_scale: " + values + "}}\n";
+  EXPECT_THAT(error_of(many_draws), AllOf(HasSubstr(kFile.string() + ":4:"), HasSubstr("field 'draws.count'"),
+                                          HasSubstr("would fly 2.0402e+10 runs")));
+}
+
 TEST(CampaignFile, TheShippedCampaignsAreValid) {
   const std::filesystem::path folder = THETAD_SOURCE_DIR "/scenarios/campaigns";
   const Campaign paired = load_campaign(folder / "scenario-1-paired.yaml");
