@@ -39,6 +39,10 @@ Flight::Flight(const std::string& scenario, const RunControls& controls)
   provenance_.model_options = scenario_.model_options.to_string();
   provenance_.seed = settings_.seed;
   provenance_.dt = settings_.dt;
+  const auto entries = [](const Eigen::Vector3d& v) { return std::array<double, 3>{v.x(), v.y(), v.z()}; };
+  if (controls.initial_offset) provenance_.initial_offset = entries(*controls.initial_offset);
+  if (controls.initial_attitude_offset) provenance_.initial_attitude_offset = entries(*controls.initial_attitude_offset);
+  provenance_.speed_scale = controls.speed_scale;
 }
 
 std::string Flight::disturbances() const {

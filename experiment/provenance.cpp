@@ -22,6 +22,9 @@ nlohmann::ordered_json to_json(const Provenance& p) {
   j["model"] = {{"preset", p.model_preset}, {"options", p.model_options}};
   j["seed"] = p.seed;
   j["dt_s"] = p.dt;
+  if (p.initial_offset) j["initial_offset_m"] = *p.initial_offset;
+  if (p.initial_attitude_offset) j["initial_attitude_offset_rad"] = *p.initial_attitude_offset;
+  if (p.speed_scale) j["trajectory_speed_scale"] = *p.speed_scale;
   if (!p.host.empty()) j["host"] = p.host;
   if (!p.start_time.empty()) j["start_time_utc"] = p.start_time;
   return j;

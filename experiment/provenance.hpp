@@ -1,6 +1,8 @@
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -21,6 +23,11 @@ struct Provenance {
   std::string model_options;    // every switch, heli::ModelOptions::to_string()
   std::uint64_t seed = 0;
   double dt = 0.0;
+  // The run controls that change the flight outside its simulation settings (RunControls), when
+  // given: a replay needs them to fly the same run.
+  std::optional<std::array<double, 3>> initial_offset;           // m, north-east-down
+  std::optional<std::array<double, 3>> initial_attitude_offset;  // rad: roll, pitch, yaw
+  std::optional<double> speed_scale;
   // Wall-clock facts: empty when the run was asked for byte-identical output (no timing).
   std::string host;
   std::string start_time;  // UTC, ISO 8601

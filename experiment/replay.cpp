@@ -1,5 +1,6 @@
 #include "experiment/replay.hpp"
 
+#include <array>
 #include <string_view>
 
 #include "core/error.hpp"
@@ -19,9 +20,15 @@ constexpr const char* kCompared[] = {"status",           "reason",           "en
                                      "parameter_factors", "controller_counters", "tracking_error_m", "control_effort",
                                      "saturation",       "cost"};
 
-RunControls controls_of(const Json& settings, std::uint64_t seed) {
+RunControls controls_of(const Json& settings, const Json& provenance) {
   RunControls controls;
-  controls.seed = seed;
+  controls.seed = provenance.at("seed").get<std::uint64_t>();
+  const auto vector = [](const Json& entries) { return Eigen::Vector3d(entries.get<std::array<double, 3>>().data()); };
+  if (provenance.contains("initial_offset_m")) controls.initial_offset = vector(provenance["initial_offset_m"]);
+  if (provenance.contains("initial_attitude_offset_rad"))
+    controls.initial_attitude_offset = vector(provenance["initial_attitude_offset_rad"]);
+  if (provenance.contains("trajectory_speed_scale"))
+    controls.speed_scale = provenance["trajectory_speed_scale"].get<double>();
   controls.duration = settings.at("duration_s").get<double>();
   controls.dt = settings.at("dt_s").get<double>();
   controls.log_every = settings.at("log_every").get<int>();
@@ -57,7 +64,7 @@ Replay replay(const std::filesystem::path& result_file, Progress* progress) {
     if (sha256_of_file(scenario) != sha)
       throw Error(result_file.string() + ": the scenario " + scenario +
                   " has changed since the run (its SHA-256 differs from the recorded one)");
-    const Flight flight(scenario, controls_of(recorded.at("settings"), provenance.at("seed").get<std::uint64_t>()));
+    const Flight flight(scenario, controls_of(recorded.at("settings"), provenance));
     ControllerSpec spec{recorded.at("label").get<std::string>(), recorded.at("controller").get<std::string>(),
                         json_to_yaml(recorded.at("controller_settings")), result_file.string(), {}};
     PreparedController prepared = flight.prepare(spec);

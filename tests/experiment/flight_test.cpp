@@ -1,5 +1,6 @@
 #include "experiment/flight.hpp"
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -251,6 +252,22 @@ TEST_F(FlightFiles, AReplayFliesTheSameRunFromTheResultFileAlone) {
   const Replay edited = replay(files.json);
   ASSERT_EQ(edited.differences.size(), 1u);
   EXPECT_THAT(edited.differences[0], HasSubstr("cost"));
+}
+
+// A kept campaign log replays too: the initial offsets and the speed scale act outside the
+// simulation settings, so the result file records them with the seed.
+TEST_F(FlightFiles, AReplayFliesTheSameOffsetAndSpeedScaledRun) {
+  RunControls controls = seconds(0.3);
+  controls.initial_offset = Eigen::Vector3d(0.5, -0.25, 0.125);
+  controls.initial_attitude_offset = Eigen::Vector3d(0.1, -0.05, 0.2);
+  controls.speed_scale = 1.5;
+  const RunFiles files = write_run_files(fly(Flight(kScenario, controls), "lqr"), dir_);
+  EXPECT_THAT(read(files.json), HasSubstr("\"trajectory_speed_scale\": 1.5"));
+  const Replay again = replay(files.json);
+  EXPECT_TRUE(again.differences.empty()) << again.differences.front();
+  EXPECT_EQ(again.result.provenance.initial_offset, (std::array<double, 3>{0.5, -0.25, 0.125}));
+  EXPECT_EQ(again.result.provenance.initial_attitude_offset, (std::array<double, 3>{0.1, -0.05, 0.2}));
+  EXPECT_EQ(again.result.provenance.speed_scale, 1.5);
 }
 
 TEST_F(FlightFiles, AReplayRefusesAScenarioThatChanged) {
