@@ -197,10 +197,13 @@ class ShootingNlp final : public Ipopt::TNLP {
     });
   }
 
+  // The derivatives, and the values with them.
   bool derivatives(const Ipopt::Number* x, bool new_x) {
-    return once_per_point(x, new_x, have_derivatives_, [this](std::size_t k) {
-      interval_.jacobian(static_cast<int>(k), node_, u_, derivatives_[k]);
+    const bool done = once_per_point(x, new_x, have_derivatives_, [this](std::size_t k) {
+      costs_[k] = interval_.linearize(static_cast<int>(k), node_, u_, next_[k], derivatives_[k]);
     });
+    if (done) have_values_ = true;
+    return done;
   }
 
   const OptimalControlProblem& problem_;
@@ -264,6 +267,12 @@ OptimalControlSolution solve_optimal_control(const OptimalControlProblem& proble
   check_shape("the start's nodes", start.nodes, N + 1, d);
   check_shape("the start's inputs", start.inputs, N, m);
 
+  {  // A plant without a Jacobian, or without a value at the start, fails here with its reason, not in Ipopt.
+    ShootingInterval first(problem);
+    Eigen::VectorXd next;
+    Eigen::MatrixXd derivative;
+    first.linearize(0, first.initial_node(), start.inputs.row(0).transpose(), next, derivative);
+  }
   Ipopt::SmartPtr<ShootingNlp> nlp = new ShootingNlp(problem, start, settings);
   OptimalControlSolution solution;
   solution.outcome = solve_with_ipopt(*nlp, settings.ipopt);

@@ -98,7 +98,7 @@ RunResult optimum_run(const Flight& flight, const OptimalControlProblem& problem
   settings["transcription"] = "multiple shooting on the RK4 plant, input held over each control interval";
   settings["control_interval"] = options.control_interval;
   settings["intervals"] = problem.intervals;
-  settings["derivatives"] = "central differences of each interval map; L-BFGS Hessian";
+  settings["derivatives"] = "exact: RK4 sensitivities with the plant's Jacobian (automatic differentiation); L-BFGS Hessian";
   settings["warm_start"] = warm_start;
   settings["ipopt_status"] = solution.outcome.status;
   settings["ipopt_iterations"] = solution.iterations;

@@ -114,12 +114,13 @@ TEST(OptimalControl, IntervalDerivativesAreTheDiscreteMapOnALinearPlant) {
   const LinearPlant plant = small_plant();
   const OptimalControlProblem problem = problem_for(plant);
   ShootingInterval interval(problem);
+  Eigen::VectorXd next(3);
   Eigen::MatrixXd derivative;
-  interval.jacobian(4, problem.initial_state, Eigen::Vector2d(0.7, -0.2), derivative);
+  interval.linearize(4, problem.initial_state, Eigen::Vector2d(0.7, -0.2), next, derivative);
   const Discrete exact =
       repeat(rk4_step(plant.A(), plant.B(), problem.dt), problem.controller_period_steps * problem.interval_periods);
-  EXPECT_LE((derivative.topLeftCorner(3, 3) - exact.Phi).cwiseAbs().maxCoeff(), 1e-10);
-  EXPECT_LE((derivative.topRightCorner(3, 2) - exact.Gamma).cwiseAbs().maxCoeff(), 1e-10);
+  EXPECT_LE((derivative.topLeftCorner(3, 3) - exact.Phi).cwiseAbs().maxCoeff(), 1e-14);
+  EXPECT_LE((derivative.topRightCorner(3, 2) - exact.Gamma).cwiseAbs().maxCoeff(), 1e-14);
 }
 
 // The objective is J as the plant simulator prices a flight, sample for sample.
