@@ -243,13 +243,14 @@ ShootingTrajectory shooting_guess(const OptimalControlProblem& problem, const Ei
   const double period = problem.controller_period();
   ShootingTrajectory guess{Eigen::MatrixXd(N + 1, d), Eigen::MatrixXd(N, m)};
   PositionIntegral error_integral;
+  error_integral.value = problem.initial_integral;
   for (int k = 0; k < N; ++k) {
     guess.nodes.row(k).head(n) = states.row(k * K);
     if (problem.sampled_position_integral) guess.nodes.row(k).tail<3>() = error_integral.value.transpose();
     guess.inputs.row(k) = inputs.middleRows(k * K, K).colwise().mean();
     for (int j = k * K; j < (k + 1) * K; ++j) {
       const Eigen::Vector3d position = states.row(j).head<3>().transpose();
-      error_integral.accumulate(position - problem.reference->position(j * period), period);
+      error_integral.accumulate(position - problem.reference->position((problem.first_sample + j) * period), period);
     }
   }
   ShootingInterval interval(problem);

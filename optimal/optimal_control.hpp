@@ -18,7 +18,7 @@ struct ShootingTrajectory {
 };
 
 // The warm start from a flight: `states` (at least samples() rows of n) and `inputs` (at least
-// samples() rows of m) at every controller sample from t = 0. Nodes are the flight's states at
+// samples() rows of m) at every controller sample from the problem's start. Nodes are the flight's states at
 // the interval starts (with the integral it accumulated) and the last node what the last
 // interval reaches; each interval holds the mean of the flight's inputs over it. Throws
 // thetad::Error when the flight is too short or mis-sized.

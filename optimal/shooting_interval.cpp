@@ -27,9 +27,9 @@ ShootingInterval::ShootingInterval(const OptimalControlProblem& problem)
   const double period = problem.controller_period();
   PositionIntegral integral;
   references_.reserve(static_cast<std::size_t>(problem.samples()));
-  for (int k = 0; k < problem.samples(); ++k) {
+  for (int k = 0; k < problem.first_sample + problem.samples(); ++k) {
     const Eigen::Vector3d position = problem.reference->position(k * period);
-    references_.push_back({position, integral.value});
+    if (k >= problem.first_sample) references_.push_back({position, integral.value});
     integral.accumulate(position, period);
   }
   // The tracking vector is the state less the reference (affine in the state), so its columns at
@@ -49,6 +49,7 @@ ShootingInterval::ShootingInterval(const OptimalControlProblem& problem)
 Eigen::VectorXd ShootingInterval::initial_node() const {
   Eigen::VectorXd node = Eigen::VectorXd::Zero(node_dim_);
   node.head(n_) = problem_.initial_state;
+  if (problem_.sampled_position_integral) node.tail<3>() = problem_.initial_integral;
   return node;
 }
 
@@ -94,7 +95,7 @@ double ShootingInterval::run(int interval, const Eigen::VectorXd& node, const Ei
     x_ = next.head(n_);
     problem_.plant->tracking_vector(x_, reference, v_);
     if (priced) v_.segment<3>(*priced) = next.tail<3>();
-    if (visit) visit(k * period, next, v_, u);
+    if (visit) visit((problem_.first_sample + k) * period, next, v_, u);
     // The same expression as the run metrics', so that a flight priced here costs what it cost.
     cost += 0.5 * (v_.cwiseAbs2().dot(problem_.state_weights) + u.cwiseAbs2().dot(problem_.input_weights)) * period;
     if (sensitivities) {

@@ -35,7 +35,7 @@ class ShootingInterval {
   double linearize(int interval, const Eigen::VectorXd& node, const Eigen::VectorXd& u, Eigen::VectorXd& next,
                    Eigen::MatrixXd& derivative);
 
-  // The node at the start of the horizon: the initial state, the integral 0.
+  // The node at the start of the horizon: the initial state and integral.
   Eigen::VectorXd initial_node() const;
 
  private:
@@ -50,7 +50,7 @@ class ShootingInterval {
 
   const OptimalControlProblem& problem_;
   int n_, m_, node_dim_;
-  std::vector<Reference> references_;  // per controller sample
+  std::vector<Reference> references_;  // per controller sample of the horizon
   Eigen::MatrixXd tracking_gain_;      // d v / d x as priced: the tracking vector is affine in the state
   sim::Rk4Workspace workspace_;
   Eigen::VectorXd x_, v_, stage_, next_state_;
