@@ -110,4 +110,15 @@ double main_rotor_speed(const Parameters& p, double thrust, double horizontal_ai
   return best;
 }
 
+Dual implicit_rotor_speed(const Parameters& p, double rotor_speed, const Dual& thrust,
+                          const Dual& horizontal_airspeed_squared, const Dual& w_a) {
+  ThrustResidual g = residual(p, thrust.value(), 0.0, w_a.value());
+  g.vh2 = horizontal_airspeed_squared.value();
+  const double y = g.c * rotor_speed - g.w_a, norm = std::sqrt(g.vh2 + y * y);
+  const double per_airspeed_squared = g.k * rotor_speed / (2.0 * norm), per_w_a = -g.k * rotor_speed * y / norm;
+  return Dual(rotor_speed, (thrust.derivatives() - per_airspeed_squared * horizontal_airspeed_squared.derivatives() -
+                            per_w_a * w_a.derivatives()) /
+                               g.derivative(rotor_speed));
+}
+
 }  // namespace thetad::heli
