@@ -187,7 +187,9 @@ class ThetaDController final : public Controller {
 
   // Per-step buffers, sized in the constructor or at reset.
   Eigen::MatrixXd F_, B_;
-  Eigen::MatrixXd g_tilde_scaled_;  // g̃ L⁻ᵀ: S2 = g̃s g̃sᵀ, S1 = g0s g̃sᵀ + g̃s g0sᵀ
+  // [g0 L⁻ᵀ, g̃ L⁻ᵀ] side by side (n × 2m), so that one product gives Y_i and Z_i below;
+  // S2 = g̃s g̃sᵀ, S1 = g0s g̃sᵀ + g̃s g0sᵀ with g̃s the right half.
+  Eigen::MatrixXd scaled_inputs_;
   // The nonzero coefficients of Ã = F − A0 (~33 of 324 for the helicopter): the first
   // a_tilde_count_ entries of arrays sized n² (sized, not reserved, so that copies keep them).
   std::vector<Eigen::Index> a_tilde_rows_, a_tilde_cols_;
@@ -195,10 +197,10 @@ class ThetaDController final : public Controller {
   std::size_t a_tilde_count_ = 0;
   Eigen::VectorXd coefficients_;    // c of basis_
   std::vector<Eigen::MatrixXd> T_;  // T_i (θ = 1, spec §5.7), already scaled by e_i
-  std::vector<Eigen::MatrixXd> Y_;  // T_i g0 L⁻ᵀ
-  std::vector<Eigen::MatrixXd> Z_;  // T_i g̃ L⁻ᵀ
-  Eigen::MatrixXd M_;               // W_i = M + Mᵀ (spec §5.4)
-  Eigen::MatrixXd left_, right_;    // the low-rank sums of M as one product left · rightᵀ
+  std::vector<Eigen::MatrixXd> products_;  // [Y_i, Z_i] = T_i [g0 L⁻ᵀ, g̃ L⁻ᵀ] (n × 2m)
+  std::vector<Eigen::MatrixXd> pairs_;     // C_i = Y_i + Z_{i−1}, i ≥ 1 (see form_right_side)
+  Eigen::MatrixXd M_;                      // W_i = M + Mᵀ (spec §5.4)
+  Eigen::MatrixXd left_, right_;           // the low-rank sums of M as one product left · rightᵀ
   Eigen::VectorXd packed_right_, packed_term_;
   Eigen::VectorXd v_, T0_v_, value_gradient_, Bt_gradient_, guess_, update_, applied_;
   int last_iterations_ = 0;

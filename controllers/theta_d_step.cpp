@@ -32,6 +32,9 @@ Eigen::Map<const Eigen::Matrix<double, Rows, 1>> view(const Eigen::VectorXd& a) 
   return {a.data(), a.size()};
 }
 
+// Twice a compile-time size (the n × 2m buffers of pairs of n × m factors); dynamic stays dynamic.
+constexpr int twice(int size) { return size == Eigen::Dynamic ? Eigen::Dynamic : 2 * size; }
+
 // Every entry exactly 0, by one vectorised sum of magnitudes: a sum of nonnegative terms is 0 only
 // if each is (no underflow in adding them), and a NaN or an infinity makes it nonzero.
 template <class Derived>
@@ -78,10 +81,11 @@ ThetaDController::Deviation ThetaDController::gather_deviation(const Eigen::Ref<
       if (value != 0.0) add_a_tilde(entry, value);
     }
   }
-  auto g_tilde_scaled = view<N, M>(g_tilde_scaled_);
+  const Eigen::Index m = B_.cols();
+  auto g_tilde_scaled = view<N, twice(M)>(scaled_inputs_).template rightCols<M>(m);
   g_tilde_scaled.noalias() = B * view<M, M>(R_inverse_sqrt_t_);
   g_tilde_scaled -= view<N, M>(g0_scaled_);
-  view<N, M>(Z_[0]).noalias() = view<N, N>(T_[0]) * g_tilde_scaled;
+  view<N, twice(M)>(products_[0]).template rightCols<M>(m).noalias() = view<N, N>(T_[0]) * g_tilde_scaled;  // Z0
   return deviation;
 }
 
@@ -91,8 +95,13 @@ void ThetaDController::form_right_side(std::size_t i) {
   // Eqs. (22b–d) for general i (spec §5.4), W_i = M + Mᵀ with
   //   M = −T_{i−1} Ã + Σ_{j<i} T_j g0 R⁻¹ g̃ᵀ T_{i−1−j} + ½ Σ_{j≤i−2} T_j S2 T_{i−2−j} + ½ Σ_{1≤j<i} T_j G0 T_{i−j}:
   // the S1 sum is X + Xᵀ of its first half, the S2 and G0 sums are symmetric on their own.
-  // S1, S2, G0 enter only through the rank-m factors Y_j = T_j g0 L⁻ᵀ and Z_j = T_j g̃ L⁻ᵀ,
-  // gathered side by side so that the sums are one product.
+  // S1, S2, G0 enter only through the rank-m factors Y_j = T_j g0 L⁻ᵀ and Z_j = T_j g̃ L⁻ᵀ.
+  // With C_j = Y_j + Z_{j−1} (j ≥ 1), Σ_{1≤j<i} C_j C_{i−j}ᵀ holds the G0 and S2 sums and every
+  // S1 product but Y_0 Z_{i−1}ᵀ and its transpose (the coefficient of t^i in C(t) C(t)ᵀ, C(t) =
+  // Σ C_j t^j), and it is symmetric, so that the same W_i comes from
+  //   M = −T_{i−1} Ã + Y_0 Z_{i−1}ᵀ + Σ_{1≤j<i−j} C_j C_{i−j}ᵀ + ½ C_{i/2} C_{i/2}ᵀ (i even):
+  // 1 + ⌊(i − 1)/2⌋ + [i even] rank-m products instead of 3i − 2 (2 for T2 instead of 4),
+  // gathered side by side so that the sum is one product.
   const auto previous = view<N, N>(T_[i - 1]);
   auto sum = view<N, N>(M_);
   sum.setZero();
@@ -101,14 +110,14 @@ void ThetaDController::form_right_side(std::size_t i) {
   auto left = view<N, Eigen::Dynamic>(left_);
   auto right = view<N, Eigen::Dynamic>(right_);
   Eigen::Index rank = 0;
-  auto add = [&](double weight, const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
-    left.template middleCols<M>(rank, m) = weight * view<N, M>(a);
-    right.template middleCols<M>(rank, m) = view<N, M>(b);
+  auto add = [&](double weight, const auto& a, const auto& b) {
+    left.template middleCols<M>(rank, m) = weight * a;
+    right.template middleCols<M>(rank, m) = b;
     rank += m;
   };
-  for (std::size_t j = 0; j < i; ++j) add(1.0, Y_[j], Z_[i - 1 - j]);
-  for (std::size_t j = 0; j + 2 <= i; ++j) add(0.5, Z_[j], Z_[i - 2 - j]);
-  for (std::size_t j = 1; j < i; ++j) add(0.5, Y_[j], Y_[i - j]);
+  add(1.0, view<N, twice(M)>(products_[0]).template leftCols<M>(m), view<N, twice(M)>(products_[i - 1]).template rightCols<M>(m));
+  for (std::size_t j = 1; j < i - j; ++j) add(1.0, view<N, M>(pairs_[j]), view<N, M>(pairs_[i - j]));
+  if (i % 2 == 0) add(0.5, view<N, M>(pairs_[i / 2]), view<N, M>(pairs_[i / 2]));
   sum.noalias() += left.leftCols(rank) * right.leftCols(rank).transpose();
   for (Eigen::Index a = 0; a < unknowns; ++a)
     packed_right_[a] = sum(unknown_row_[a], unknown_col_[a]) + sum(unknown_col_[a], unknown_row_[a]);
@@ -144,8 +153,10 @@ ThetaDController::LastTerm ThetaDController::evaluate_series(const Eigen::Ref<co
       term(unknown_col_[a], unknown_row_[a]) = packed_term_[a];
     }
     if (last_term) break;  // Y, Z of the last term enter no W
-    view<N, M>(Y_[i]).noalias() = term * view<N, M>(g0_scaled_);
-    view<N, M>(Z_[i]).noalias() = term * view<N, M>(g_tilde_scaled_);
+    const Eigen::Index m = B_.cols();
+    auto products = view<N, twice(M)>(products_[i]);
+    products.noalias() = term * view<N, twice(M)>(scaled_inputs_);
+    view<N, M>(pairs_[i]) = products.template leftCols<M>(m) + view<N, twice(M)>(products_[i - 1]).template rightCols<M>(m);
   }
   return LastTerm::full;
 }
