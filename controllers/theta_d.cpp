@@ -254,6 +254,9 @@ void ThetaDController::prepare_first_term_basis(const SdcPattern& pattern) {
   Eigen::Index count = 0;
   for (const char varies : pattern.a_varies) count += varies;
   for (const char varies : pattern.g_varies) count += varies;
+  first_term_.resize(unknowns);
+  first_term_coefficients_.resize(count < unknowns ? count : 0);
+  first_term_current_ = false;
   basis_entries_.clear();
   a_basis_count_ = 0;
   a_unseen_.setOnes();

@@ -126,9 +126,10 @@ void ThetaDController::form_right_side(std::size_t i) {
 template <int N, int M>
 ThetaDController::LastTerm ThetaDController::evaluate_series(const Eigen::Ref<const Eigen::VectorXd>& x,
                                                              const Eigen::Ref<const Eigen::VectorXd>& input, double t,
-                                                             LastTerm wanted) {
+                                                             LastTerm wanted, bool later_pass) {
   const Eigen::Index n = F_.rows(), unknowns = n * (n + 1) / 2;
   const Deviation deviation = gather_deviation<N, M>(x, input, wanted);
+  if (!deviation.in_basis) first_term_current_ = false;
   for (std::size_t i = 1; i < T_.size(); ++i) {
     const bool last_term = i + 1 == T_.size();
     const LastTerm form = last_term && deviation.input_rows_only ? wanted : LastTerm::full;
@@ -136,7 +137,20 @@ ThetaDController::LastTerm ThetaDController::evaluate_series(const Eigen::Ref<co
     // Eqs. (24)–(25): T_i Ac0 + Ac0ᵀ T_i = e_i(t) W_i.
     const double e = perturbation_factor(settings_.k[static_cast<Eigen::Index>(i - 1)],
                                          settings_.l[static_cast<Eigen::Index>(i - 1)], t - t0_);
-    if (i == 1 && deviation.in_basis) {
+    if (i == 1 && deviation.in_basis && !last_term) {
+      if (later_pass && first_term_current_) {
+        // Same x and t as the last pass: only the coefficients that follow the input moved (the
+        // helicopter's rotor speed: 12 of 33), and T1 is linear in them.
+        for (Eigen::Index k = 0; k < coefficients_.size(); ++k) {
+          const double change = coefficients_[k] - first_term_coefficients_[k];
+          if (change != 0.0) first_term_.noalias() += (e * change) * basis_.col(k);
+        }
+      } else {
+        first_term_.noalias() = e * (basis_ * coefficients_);
+      }
+      first_term_coefficients_ = coefficients_;
+      first_term_current_ = true;
+    } else if (i == 1 && deviation.in_basis) {
       packed_term_.head(solved).noalias() = e * (basis_.topRows(solved) * coefficients_);
     } else {
       form_right_side<N, M>(i);
@@ -148,9 +162,10 @@ ThetaDController::LastTerm ThetaDController::evaluate_series(const Eigen::Ref<co
     }
     if (form == LastTerm::input_rows) return form;
     auto term = view<N, N>(T_[i]);
+    const Eigen::VectorXd& packed = i == 1 && first_term_current_ ? first_term_ : packed_term_;
     for (Eigen::Index a = 0; a < unknowns; ++a) {
-      term(unknown_row_[a], unknown_col_[a]) = packed_term_[a];
-      term(unknown_col_[a], unknown_row_[a]) = packed_term_[a];
+      term(unknown_row_[a], unknown_col_[a]) = packed[a];
+      term(unknown_col_[a], unknown_row_[a]) = packed[a];
     }
     if (last_term) break;  // Y, Z of the last term enter no W
     const Eigen::Index m = B_.cols();
@@ -166,8 +181,8 @@ Eigen::MatrixXd ThetaDController::value_matrix(const Eigen::VectorXd& x, const E
   if (x.size() != F_.rows() || input.size() != B_.cols())
     throw Error("theta-d: value_matrix needs a state of " + std::to_string(F_.rows()) + " and an input of " +
                 std::to_string(B_.cols()) + " entries");
-  if (fixed_size_) evaluate_series<kFixedStates, kFixedInputs>(x, input, t, LastTerm::full);
-  else evaluate_series<Eigen::Dynamic, Eigen::Dynamic>(x, input, t, LastTerm::full);
+  if (fixed_size_) evaluate_series<kFixedStates, kFixedInputs>(x, input, t, LastTerm::full, false);
+  else evaluate_series<Eigen::Dynamic, Eigen::Dynamic>(x, input, t, LastTerm::full, false);
   Eigen::MatrixXd sum = T_[0];
   for (std::size_t i = 1; i < T_.size(); ++i) sum += T_[i];
   return sum;
@@ -199,7 +214,7 @@ void ThetaDController::run_passes(double t, const Eigen::Ref<const Eigen::Vector
         row_solutions_.middleCols(static_cast<Eigen::Index>(k) * n, n) * v_;
   auto value_gradient = view<N>(value_gradient_);
   for (last_iterations_ = 1;; ++last_iterations_) {
-    const LastTerm formed = evaluate_series<N, M>(x, guess_, t, wanted);
+    const LastTerm formed = evaluate_series<N, M>(x, guess_, t, wanted, last_iterations_ > 1);
     // Eq. (35): u = −R⁻¹ Bᵀ(x) (Σ T_i) V_track.
     const std::size_t full_terms = formed == LastTerm::full ? T_.size() : T_.size() - 1;
     value_gradient = view<N>(T0_v_);
