@@ -65,7 +65,15 @@ BasicAirData<T> air_data_of(const Environment& environment, const State& x) {
       a.cos_theta * sin_psi, a.sin_phi * a.sin_theta * sin_psi + a.cos_phi * cos_psi,
       a.cos_phi * a.sin_theta * sin_psi - a.sin_phi * cos_psi,
       -a.sin_theta, a.sin_phi * a.cos_theta, a.cos_phi * a.cos_theta;
-  // §2.7.1: inertial wind rotated into body axes, then Table 1 #26-28 per body component.
+  // §2.7.1: inertial wind rotated into body axes, then Table 1 #26-28 per body component. In still
+  // air (the controllers' model) the airspeed is the state's own velocity, the same numbers without
+  // waiting for the trigonometry, so the rotor speed's iteration can run alongside it.
+  if ((environment.wind_ned.array() == 0.0).all()) {
+    a.u_a = x[kU];
+    a.v_a = x[kV];
+    a.w_a = x[kW];
+    return a;
+  }
   const Eigen::Matrix<T, 3, 1> wind_body = environment.wind_body_scale.template cast<T>().cwiseProduct(
       a.rotation.transpose() * environment.wind_ned.template cast<T>());
   a.u_a = x[kU] - wind_body.x();
@@ -123,7 +131,8 @@ void fill_rotor_torques(const Parameters& p, const ModelOptions& options, BasicF
   // Tail-rotor profile torque at Omega_tr = n_tr Omega_mr.
   if (options.tail_rotor_torque == ModelOptions::TailRotorTorque::profile) {
     const T omega_tr = p.gear_tr * f.rotor_speed;
-    f.q_tr = rho * std::numbers::pi * std::pow(p.radius_tr, 5) * omega_tr * omega_tr * p.cd0_tr *
+    const double r_tr = p.radius_tr;
+    f.q_tr = rho * std::numbers::pi * (r_tr * r_tr * r_tr * r_tr * r_tr) * omega_tr * omega_tr * p.cd0_tr *
              p.tail_rotor_solidity() / 8.0;
   } else {
     f.q_tr = 0.0;

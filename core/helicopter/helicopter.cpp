@@ -14,16 +14,23 @@ namespace thetad::heli {
 
 namespace {
 
-void require_size(const char* what, Eigen::Index rows, Eigen::Index cols, Eigen::Index want_rows, Eigen::Index want_cols) {
-  if (rows != want_rows || cols != want_cols) {
-    std::ostringstream message;
-    message << "helicopter: " << what << " is " << rows << "x" << cols << ", expected " << want_rows << "x" << want_cols;
-    throw Error(message.str());
-  }
+[[noreturn]] void throw_size_error(const char* what, Eigen::Index rows, Eigen::Index cols, Eigen::Index want_rows,
+                                   Eigen::Index want_cols) {
+  std::ostringstream message;
+  message << "helicopter: " << what << " is " << rows << "x" << cols << ", expected " << want_rows << "x" << want_cols;
+  throw Error(message.str());
 }
 
-// sin(x)/x, exact to double precision near 0 by its Taylor series (spec §6.5).
-double sinc(double x) { return std::abs(x) < 1e-4 ? 1.0 - x * x / 6.0 : std::sin(x) / x; }
+// Inline, so that the hot path pays two comparisons and no call.
+inline void require_size(const char* what, Eigen::Index rows, Eigen::Index cols, Eigen::Index want_rows,
+                         Eigen::Index want_cols) {
+  if (rows != want_rows || cols != want_cols) [[unlikely]]
+    throw_size_error(what, rows, cols, want_rows, want_cols);
+}
+
+// sin(x)/x from sin_x = sin(x), which the air data already holds; exact to double precision near
+// 0 by its Taylor series (spec §6.5).
+double sinc(double x, double sin_x) { return std::abs(x) < 1e-4 ? 1.0 - x * x / 6.0 : sin_x / x; }
 
 // Omega_mr for the applied thrust at the air data of the state (A4, or the governor of A-11).
 double rotor_speed_at(const Parameters& p, const ModelOptions& options, const AirData& air, double thrust) {
@@ -31,7 +38,7 @@ double rotor_speed_at(const Parameters& p, const ModelOptions& options, const Ai
     if (!std::isfinite(thrust)) throw Error("helicopter: main-rotor thrust T_mr = " + std::to_string(thrust) + " N is not finite");
     return p.omega_nom;
   }
-  return main_rotor_speed(p, thrust, std::hypot(air.u_a, air.v_a), air.w_a, p.omega_nom);
+  return main_rotor_speed(p, thrust, std::sqrt(air.u_a * air.u_a + air.v_a * air.v_a), air.w_a, p.omega_nom);
 }
 
 // The entries of Eqs. (29)-(30) that no state, input or rotor speed changes (spec §6.2, §6.3),
@@ -77,8 +84,8 @@ void fill_varying_sdc(const Parameters& p, const Forces& f, const Eigen::Ref<con
   F(kV, kW) = pr;
   F(kW, kU) = qr;
   F(kW, kV) = -pr;
-  F(kU, kTheta) = -g * sinc(x[kTheta]);             // a4_8
-  F(kV, kPhi) = g * a.cos_theta * sinc(x[kPhi]);    // a5_7
+  F(kU, kTheta) = -g * sinc(x[kTheta], a.sin_theta);           // a4_8
+  F(kV, kPhi) = g * a.cos_theta * sinc(x[kPhi], a.sin_phi);   // a5_7
   F(kU, kS) = f.x_fus / (m * s);                                      // a4_18
   F(kV, kS) = (f.y_fus + f.y_tr + f.y_vf) / (m * s);                  // a5_18
   F(kW, kS) = f.z_fus / (m * s) + g * a.cos_phi * a.cos_theta / s;    // a6_18
