@@ -19,6 +19,12 @@ std::string shape(const Eigen::Ref<const Eigen::MatrixXd>& M) {
   return std::to_string(M.rows()) + "x" + std::to_string(M.cols());
 }
 
+// The upper triangle of a square M from its lower one.
+void mirror_lower(Eigen::Ref<Eigen::MatrixXd> M) {
+  for (Eigen::Index j = 0; j < M.cols(); ++j)
+    for (Eigen::Index i = 0; i < j; ++i) M(i, j) = M(j, i);
+}
+
 // One block of the sweep below with a 2×2 diagonal block on either side: T_kk'Z + Z T_ll = r,
 // vec(Z) in column order, (I ⊗ T_kk' + T_ll' ⊗ I) vec(Z) = vec(r), by a fixed-size LU (the sums
 // λi + λj of its eigenvalues are bounded away from 0 by the check in solve()).
@@ -156,19 +162,23 @@ void LyapunovWorkspace::solve(const Eigen::Ref<const Eigen::MatrixXd>& Q, Eigen:
   // A = U T U' turns A'X + XA = −Q into T'Y + YT = −U'QU, Y = U'XU.
   const Eigen::MatrixXd& U = schur_.matrixU();
   const bool symmetric = Q == Q.transpose();
+  // Symmetric: both triple products are formed on their lower half only, and mirrored.
   scratch_.noalias() = U.transpose() * Q;
-  Y_.noalias() = -scratch_ * U;
-  // The product is symmetric only up to rounding; the sweep's 2×2 diagonal blocks read both halves.
-  if (symmetric)
-    for (Eigen::Index j = 0; j < n_; ++j)
-      for (Eigen::Index i = 0; i < j; ++i) Y_(i, j) = Y_(j, i);
+  if (symmetric) {
+    Y_.triangularView<Eigen::Lower>() = -scratch_ * U;
+    mirror_lower(Y_);
+  } else {
+    Y_.noalias() = -scratch_ * U;
+  }
   sweep(symmetric);
   scratch_.noalias() = U * Y_;
-  X.noalias() = scratch_ * U.transpose();
+  if (symmetric) {
+    X.triangularView<Eigen::Lower>() = scratch_ * U.transpose();
+    mirror_lower(X);
+  } else {
+    X.noalias() = scratch_ * U.transpose();
+  }
   if (!X.allFinite()) throw Error("solve_lyapunov: the solution is not finite (the equation is too ill-conditioned)");
-  if (symmetric)
-    for (Eigen::Index j = 0; j < n_; ++j)
-      for (Eigen::Index i = 0; i < j; ++i) X(i, j) = X(j, i) = 0.5 * (X(i, j) + X(j, i));
 }
 
 ConstantLyapunovSolver::ConstantLyapunovSolver(const Eigen::Ref<const Eigen::MatrixXd>& Ac)
