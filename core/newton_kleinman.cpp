@@ -94,6 +94,7 @@ bool NewtonKleinmanSolver::iterate(const MatrixRef& A, const MatrixRef& P0, bool
   int accepted = 0;  // steps that moved P; `steps` counts an undone chord step too
   for (;;) {
     const double rho = current_.rho;
+    if (!std::isfinite(rho) && chord_taken) return false;
     if (!std::isfinite(rho)) fail("Newton–Kleinman: the residual is not finite at step " + std::to_string(steps));
     // At least one step: a residual is blind to some errors of P (ill-conditioned directions), the
     // Newton step measures them. Then stop on the returned P's own ρ once the step is within the
@@ -103,7 +104,9 @@ bool NewtonKleinmanSolver::iterate(const MatrixRef& A, const MatrixRef& P0, bool
       const bool small = step <= tolerance_ * std::max(1.0, current_.P.norm());
       const bool stagnant = step > 0.5 * previous_step;
       if (rho <= tolerance_ && (small || (stagnant && last_was_newton))) break;
-      if (last_was_newton && (small || stagnant) && !(rho < previous_rho))
+      const bool stalled = last_was_newton && (small || stagnant) && !(rho < previous_rho);
+      if (stalled && chord_taken) return false;
+      if (stalled)
         fail("Newton–Kleinman stalled above the tolerance: the residual ρ went from " + num(previous_rho) +
              " to " + num(rho) + " at step " + std::to_string(steps) + " (tolerance " + num(tolerance_) + ")");
       // A chord step shrinks the step by about twice the last ratio of steps: worth it only when
@@ -111,6 +114,7 @@ bool NewtonKleinmanSolver::iterate(const MatrixRef& A, const MatrixRef& P0, bool
       // no ratio yet.
       newton_next = !chord || !(step <= kChordContraction * previous_step) || (last_was_newton && accepted == 1);
     }
+    if (steps == max_iterations_ && chord_taken) return false;
     if (steps == max_iterations_)
       fail("Newton–Kleinman did not converge in " + std::to_string(steps) + " iterations (residual ρ " + num(rho) +
            ", last relative step " + num(step / std::max(1.0, current_.P.norm())) + ", tolerance " +
@@ -178,9 +182,9 @@ const CareResult& NewtonKleinmanSolver::solve(const MatrixRef& A, const MatrixRe
   held_ = false;
   schur_forms_ = 0;
   int steps = 0;
-  // Chord steps can lead to a P that no longer stabilizes (the held Schur form was too far, seen
-  // on the transient at the start of scenario I): the call then starts again from P0 with Newton
-  // steps only, Kleinman's iteration, which keeps every closed loop stable.
+  // Chord steps can lead to a P that no longer stabilizes or from which Newton stalls (the held
+  // Schur form was too far, seen on the transient at the start of scenario I): the call then starts
+  // again from P0 with Newton steps only, Kleinman's iteration, which keeps every closed loop stable.
   if (!iterate(A, P0, held, steps)) iterate(A, P0, false, steps);
   held_ = true;
   rho_ = current_.rho;

@@ -34,8 +34,8 @@ namespace thetad {
 // P stabilizes, and that Schur form is the operator of the next call's first step. A chord step
 // that does not lower ρ is undone and the step retaken with a Schur form of the current closed
 // loop (a Newton step); so is every step after one that did not shrink the step twentyfold. When
-// chord steps lead to a P that does not stabilize, the call starts again from P0 with Newton steps
-// only. The stopping rule above is the same for both kinds of step; only a Newton step can stall.
+// the iteration fails after chord steps (a P that does not stabilize, a stall, too many steps), the
+// call starts again from P0 with Newton steps only. The stopping rule above is the same for both kinds of step; only a Newton step can stall.
 class NewtonKleinmanSolver {
  public:
   // Q n×n symmetric positive semi-definite, R m×m symmetric positive definite (checked, as by
@@ -71,8 +71,8 @@ class NewtonKleinmanSolver {
   // Schur form of A − G·P of `it` into lyapunov_.
   void factor_closed_loop(const Eigen::Ref<const Eigen::MatrixXd>& A, const Iterate& it);
   // The iteration from P0 to current_ and the Schur form of its closed loop, chord steps allowed
-  // from the start when `chord` (a Schur form is held); adds its steps to `steps`. False when
-  // chord steps led to a P whose closed loop is not stable; throws on every other failure.
+  // from the start when `chord` (a Schur form is held); adds its steps to `steps`. False, after a
+  // chord step, on any failure but a Lyapunov solve's; throws otherwise.
   bool iterate(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::MatrixXd>& P0, bool chord,
                int& steps);
 
