@@ -53,6 +53,10 @@ class NewtonKleinmanSolver {
   const CareResult& solve(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::MatrixXd>& B,
                           const Eigen::Ref<const Eigen::MatrixXd>& P0);
 
+  // Drops the held Schur form: the next solve() starts with a Newton step, as a new solver does,
+  // so that a result does not depend on the calls before (a controller's reset()).
+  void forget() { held_ = false; }
+
   double tolerance() const { return tolerance_; }
   // ρ of the P of the last successful solve().
   double last_residual_to_terms() const { return rho_; }
