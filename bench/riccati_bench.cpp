@@ -217,6 +217,18 @@ void bm_alt_packed_lu(benchmark::State& state, const Problem& p) {
   state.counters["residual"] = lyapunov_residual(p, X);
 }
 
+// X with A'X + XA + W = 0 from the real Schur form A = U T U' (LAPACK dgees): T'Y + YT = −U'WU by
+// LAPACK dtrsyl, X = U Y U'.
+void dtrsyl_solve(const MatrixXd& T, const MatrixXd& U, const MatrixXd& W, MatrixXd& Y, MatrixXd& work, MatrixXd& X) {
+  const auto n = static_cast<lapack_int>(T.rows());
+  double scale = 1.0;
+  work.noalias() = U.transpose() * W;
+  Y.noalias() = -work * U;
+  LAPACKE_dtrsyl_work(LAPACK_COL_MAJOR, 'T', 'N', 1, n, n, T.data(), n, T.data(), n, Y.data(), n, &scale);
+  work.noalias() = U * Y;
+  X.noalias() = work * U.transpose();
+}
+
 // Bartels–Stewart with the real Schur form Ac = U T U' computed once: per solve two n×n
 // similarity transforms and one quasi-triangular Sylvester solve (LAPACK dtrsyl).
 void bm_alt_schur_precomputed(benchmark::State& state, const Problem& p) {
@@ -228,14 +240,57 @@ void bm_alt_schur_precomputed(benchmark::State& state, const Problem& p) {
                     wi.data(), U.data(), n) != 0)
     throw std::runtime_error("dgees failed");
   MatrixXd Y(n, n), work(n, n), X(n, n);
-  double scale = 1.0;
   for (auto _ : state) {
-    work.noalias() = U.transpose() * p.W;
-    Y.noalias() = -work * U;
-    LAPACKE_dtrsyl(LAPACK_COL_MAJOR, 'T', 'N', 1, n, n, T.data(), n, T.data(), n, Y.data(), n,
-                   &scale);
-    work.noalias() = U * Y;
-    X.noalias() = work * U.transpose();
+    dtrsyl_solve(T, U, p.W, Y, work, X);
+    benchmark::DoNotOptimize(X.data());
+  }
+  state.counters["residual"] = lyapunov_residual(p, X);
+}
+
+// ---- Lyapunov: a new closed loop at every solve, as in a Newton–Kleinman step -------------------
+// A'X + XA + W = 0 with A = Ac, the Schur form computed inside the loop ("factor_solve") or once
+// outside it ("solve_factored", the cost of a chord step's solve). The product code
+// (LyapunovWorkspace: Eigen's RealSchur and its own quasi-triangular sweep) against LAPACK dgees +
+// dtrsyl with every workspace sized outside the loop (what LyapunovWorkspace was before).
+
+void bm_lyapunov_factor_solve(benchmark::State& state, const Problem& p) {
+  thetad::LyapunovWorkspace workspace(p.Ac.rows());
+  MatrixXd X(p.W.rows(), p.W.cols());
+  for (auto _ : state) {
+    workspace.factor(p.Ac);
+    workspace.solve(p.W, X);
+    benchmark::DoNotOptimize(X.data());
+  }
+  state.counters["residual"] = lyapunov_residual(p, X);
+}
+
+void bm_lyapunov_solve_factored(benchmark::State& state, const Problem& p) {
+  thetad::LyapunovWorkspace workspace(p.Ac.rows());
+  workspace.factor(p.Ac);
+  MatrixXd X(p.W.rows(), p.W.cols());
+  for (auto _ : state) {
+    workspace.solve(p.W, X);
+    benchmark::DoNotOptimize(X.data());
+  }
+  state.counters["residual"] = lyapunov_residual(p, X);
+}
+
+void bm_alt_lyapunov_dgees_dtrsyl(benchmark::State& state, const Problem& p) {
+  const auto n = static_cast<lapack_int>(p.Ac.rows());
+  MatrixXd T(n, n), U(n, n), Y(n, n), work(n, n), X(n, n);
+  Eigen::VectorXd wr(n), wi(n);
+  std::vector<lapack_logical> bwork(static_cast<std::size_t>(n));
+  lapack_int sdim = 0;
+  double optimal = 0.0;
+  LAPACKE_dgees_work(LAPACK_COL_MAJOR, 'V', 'N', nullptr, n, T.data(), n, &sdim, wr.data(), wi.data(), U.data(), n,
+                     &optimal, -1, bwork.data());
+  Eigen::VectorXd dgees_work(std::max<Index>(static_cast<Index>(optimal), 3 * n));
+  for (auto _ : state) {
+    T = p.Ac;
+    if (LAPACKE_dgees_work(LAPACK_COL_MAJOR, 'V', 'N', nullptr, n, T.data(), n, &sdim, wr.data(), wi.data(), U.data(),
+                           n, dgees_work.data(), static_cast<lapack_int>(dgees_work.size()), bwork.data()) != 0)
+      throw std::runtime_error("dgees failed");
+    dtrsyl_solve(T, U, p.W, Y, work, X);
     benchmark::DoNotOptimize(X.data());
   }
   state.counters["residual"] = lyapunov_residual(p, X);
@@ -264,6 +319,9 @@ int main(int argc, char** argv) {
       {"newton_kleinman_solver_warm", bm_newton_kleinman_solver},
       {"sb02md", bm_sb02md},
       {"solve_lyapunov", bm_solve_lyapunov},
+      {"lyapunov_factor_solve", bm_lyapunov_factor_solve},
+      {"lyapunov_solve_factored", bm_lyapunov_solve_factored},
+      {"alt_lyapunov_dgees_dtrsyl", bm_alt_lyapunov_dgees_dtrsyl},
   };
   // The n² Kronecker operator is 1296×1296 at n = 36: its setup alone would dominate a run.
   const std::pair<const char*, Function> up_to_18[] = {

@@ -65,6 +65,7 @@ void SdreController::reset(const Eigen::VectorXd& x0, double) {
   }
   applied_ = settings_.initial_input;
   have_P_ = false;
+  newton_->forget();
   fallback_count_ = 0;
   failure_count_ = 0;
   last_iterations_ = 0;

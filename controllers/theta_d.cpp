@@ -88,17 +88,19 @@ ThetaDController::ThetaDController(const SdcPlant& model, ThetaDSettings setting
 
   F_.resize(n, n);
   B_.resize(n, m);
-  g_tilde_scaled_.resize(n, m);
+  scaled_inputs_.resize(n, 2 * m);
   const auto entries = static_cast<std::size_t>(n * n);
   a_tilde_rows_.resize(entries);
   a_tilde_cols_.resize(entries);
   a_tilde_values_.resize(entries);
   T_.assign(static_cast<std::size_t>(settings_.terms), Eigen::MatrixXd::Zero(n, n));
-  Y_.assign(static_cast<std::size_t>(settings_.terms), Eigen::MatrixXd::Zero(n, m));
-  Z_.assign(static_cast<std::size_t>(settings_.terms), Eigen::MatrixXd::Zero(n, m));
+  products_.assign(static_cast<std::size_t>(settings_.terms), Eigen::MatrixXd::Zero(n, 2 * m));
+  pairs_.assign(static_cast<std::size_t>(settings_.terms), Eigen::MatrixXd::Zero(n, m));
   M_.resize(n, n);
-  // Term i sums i + 2(i − 1) rank-m products (spec §5.4); the last term has the most.
-  const Eigen::Index blocks = std::max(1, 3 * (settings_.terms - 1) - 2);
+  // Term i sums 1 + ⌊(i − 1)/2⌋ + [i even] rank-m products (form_right_side); the last term has
+  // the most.
+  const int last = settings_.terms - 1;
+  const Eigen::Index blocks = std::max(1, 1 + (last - 1) / 2 + (last % 2 == 0 ? 1 : 0));
   left_.resize(n, blocks * m);
   right_.resize(n, blocks * m);
   packed_right_.resize(n * (n + 1) / 2);
@@ -134,8 +136,9 @@ void ThetaDController::reset(const Eigen::VectorXd& x0, double t0) {
   const CareResult care = solve_care(A0_, g0_, settings_.Q, settings_.R);
   T_[0] = care.P;
   g0_scaled_ = g0_ * R_inverse_sqrt_t_;
-  Y_[0].noalias() = T_[0] * g0_scaled_;
-  Ac0_ = A0_ - g0_scaled_ * Y_[0].transpose();  // Ac0 = A0 − G0 T0
+  scaled_inputs_.leftCols(g0_.cols()) = g0_scaled_;
+  products_[0].leftCols(g0_.cols()).noalias() = T_[0] * g0_scaled_;  // Y0
+  Ac0_ = A0_ - g0_scaled_ * products_[0].leftCols(g0_.cols()).transpose();  // Ac0 = A0 − G0 T0
   Ac0_eigenvalues_ = Eigen::EigenSolver<Eigen::MatrixXd>(Ac0_, false).eigenvalues();
   if (settings_.terms > 1) {
     lyapunov_.emplace(Ac0_);
@@ -251,6 +254,9 @@ void ThetaDController::prepare_first_term_basis(const SdcPattern& pattern) {
   Eigen::Index count = 0;
   for (const char varies : pattern.a_varies) count += varies;
   for (const char varies : pattern.g_varies) count += varies;
+  first_term_.resize(unknowns);
+  first_term_coefficients_.resize(count < unknowns ? count : 0);
+  first_term_current_ = false;
   basis_entries_.clear();
   a_basis_count_ = 0;
   a_unseen_.setOnes();
@@ -282,7 +288,7 @@ void ThetaDController::prepare_first_term_basis(const SdcPattern& pattern) {
     basis_entries_.push_back(static_cast<Eigen::Index>(j));
     g_unseen_.data()[j] = 0.0;
     const auto r = static_cast<Eigen::Index>(j) % n, c = static_cast<Eigen::Index>(j) / n;
-    M_.noalias() = (Y_[0] * R_inverse_sqrt_t_.row(c).transpose()) * T_[0].row(r);
+    M_.noalias() = (products_[0].leftCols(g0_.cols()) * R_inverse_sqrt_t_.row(c).transpose()) * T_[0].row(r);
     add_column();
   }
   basis_.noalias() = lyapunov_inverse_ * right_sides;

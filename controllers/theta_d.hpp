@@ -107,10 +107,11 @@ class ThetaDController final : public Controller {
   // helicopter's 18 × 5, on fixed-size views of the buffers below) and for Eigen::Dynamic.
   // One pass of spec §5.10 steps 1–2 at (x; input), time t: fills F_, B_, T_[1 … N−2] and the
   // last term as `wanted` asks if B(x) has no nonzero outside the input rows (else in full).
-  // Returns the form it took.
+  // Returns the form it took. later_pass: a further fixed-point pass of one control(), at the x
+  // and t of the last call (T1 is then updated from the coefficients that moved, see first_term_).
   template <int N, int M>
   LastTerm evaluate_series(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& input,
-                           double t, LastTerm wanted);
+                           double t, LastTerm wanted, bool later_pass);
   // How F(x; input), B(x; input) differ from A0, g0, for one pass of evaluate_series().
   struct Deviation {
     bool in_basis;         // every nonzero of Ã and g̃ has a slot in basis_: T1 is one product
@@ -187,18 +188,26 @@ class ThetaDController final : public Controller {
 
   // Per-step buffers, sized in the constructor or at reset.
   Eigen::MatrixXd F_, B_;
-  Eigen::MatrixXd g_tilde_scaled_;  // g̃ L⁻ᵀ: S2 = g̃s g̃sᵀ, S1 = g0s g̃sᵀ + g̃s g0sᵀ
+  // [g0 L⁻ᵀ, g̃ L⁻ᵀ] side by side (n × 2m), so that one product gives Y_i and Z_i below;
+  // S2 = g̃s g̃sᵀ, S1 = g0s g̃sᵀ + g̃s g0sᵀ with g̃s the right half.
+  Eigen::MatrixXd scaled_inputs_;
   // The nonzero coefficients of Ã = F − A0 (~33 of 324 for the helicopter): the first
   // a_tilde_count_ entries of arrays sized n² (sized, not reserved, so that copies keep them).
   std::vector<Eigen::Index> a_tilde_rows_, a_tilde_cols_;
   std::vector<double> a_tilde_values_;
   std::size_t a_tilde_count_ = 0;
   Eigen::VectorXd coefficients_;    // c of basis_
+  // T1 = e1 · basis_ · c packed, and the c it was formed with (when T1 is not the last term):
+  // within one control() x and t stay, so a later pass adds e1 · basis_ · Δc over the
+  // coefficients that changed with the input instead of the whole product. first_term_current_:
+  // the last pass formed T1 this way.
+  Eigen::VectorXd first_term_, first_term_coefficients_;
+  bool first_term_current_ = false;
   std::vector<Eigen::MatrixXd> T_;  // T_i (θ = 1, spec §5.7), already scaled by e_i
-  std::vector<Eigen::MatrixXd> Y_;  // T_i g0 L⁻ᵀ
-  std::vector<Eigen::MatrixXd> Z_;  // T_i g̃ L⁻ᵀ
-  Eigen::MatrixXd M_;               // W_i = M + Mᵀ (spec §5.4)
-  Eigen::MatrixXd left_, right_;    // the low-rank sums of M as one product left · rightᵀ
+  std::vector<Eigen::MatrixXd> products_;  // [Y_i, Z_i] = T_i [g0 L⁻ᵀ, g̃ L⁻ᵀ] (n × 2m)
+  std::vector<Eigen::MatrixXd> pairs_;     // C_i = Y_i + Z_{i−1}, i ≥ 1 (see form_right_side)
+  Eigen::MatrixXd M_;                      // W_i = M + Mᵀ (spec §5.4)
+  Eigen::MatrixXd left_, right_;           // the low-rank sums of M as one product left · rightᵀ
   Eigen::VectorXd packed_right_, packed_term_;
   Eigen::VectorXd v_, T0_v_, value_gradient_, Bt_gradient_, guess_, update_, applied_;
   int last_iterations_ = 0;

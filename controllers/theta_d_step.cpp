@@ -32,6 +32,9 @@ Eigen::Map<const Eigen::Matrix<double, Rows, 1>> view(const Eigen::VectorXd& a) 
   return {a.data(), a.size()};
 }
 
+// Twice a compile-time size (the n × 2m buffers of pairs of n × m factors); dynamic stays dynamic.
+constexpr int twice(int size) { return size == Eigen::Dynamic ? Eigen::Dynamic : 2 * size; }
+
 // Every entry exactly 0, by one vectorised sum of magnitudes: a sum of nonnegative terms is 0 only
 // if each is (no underflow in adding them), and a NaN or an infinity makes it nonzero.
 template <class Derived>
@@ -78,10 +81,11 @@ ThetaDController::Deviation ThetaDController::gather_deviation(const Eigen::Ref<
       if (value != 0.0) add_a_tilde(entry, value);
     }
   }
-  auto g_tilde_scaled = view<N, M>(g_tilde_scaled_);
+  const Eigen::Index m = B_.cols();
+  auto g_tilde_scaled = view<N, twice(M)>(scaled_inputs_).template rightCols<M>(m);
   g_tilde_scaled.noalias() = B * view<M, M>(R_inverse_sqrt_t_);
   g_tilde_scaled -= view<N, M>(g0_scaled_);
-  view<N, M>(Z_[0]).noalias() = view<N, N>(T_[0]) * g_tilde_scaled;
+  view<N, twice(M)>(products_[0]).template rightCols<M>(m).noalias() = view<N, N>(T_[0]) * g_tilde_scaled;  // Z0
   return deviation;
 }
 
@@ -91,8 +95,13 @@ void ThetaDController::form_right_side(std::size_t i) {
   // Eqs. (22b–d) for general i (spec §5.4), W_i = M + Mᵀ with
   //   M = −T_{i−1} Ã + Σ_{j<i} T_j g0 R⁻¹ g̃ᵀ T_{i−1−j} + ½ Σ_{j≤i−2} T_j S2 T_{i−2−j} + ½ Σ_{1≤j<i} T_j G0 T_{i−j}:
   // the S1 sum is X + Xᵀ of its first half, the S2 and G0 sums are symmetric on their own.
-  // S1, S2, G0 enter only through the rank-m factors Y_j = T_j g0 L⁻ᵀ and Z_j = T_j g̃ L⁻ᵀ,
-  // gathered side by side so that the sums are one product.
+  // S1, S2, G0 enter only through the rank-m factors Y_j = T_j g0 L⁻ᵀ and Z_j = T_j g̃ L⁻ᵀ.
+  // With C_j = Y_j + Z_{j−1} (j ≥ 1), Σ_{1≤j<i} C_j C_{i−j}ᵀ holds the G0 and S2 sums and every
+  // S1 product but Y_0 Z_{i−1}ᵀ and its transpose (the coefficient of t^i in C(t) C(t)ᵀ, C(t) =
+  // Σ C_j t^j), and it is symmetric, so that the same W_i comes from
+  //   M = −T_{i−1} Ã + Y_0 Z_{i−1}ᵀ + Σ_{1≤j<i−j} C_j C_{i−j}ᵀ + ½ C_{i/2} C_{i/2}ᵀ (i even):
+  // 1 + ⌊(i − 1)/2⌋ + [i even] rank-m products instead of 3i − 2 (2 for T2 instead of 4),
+  // gathered side by side so that the sum is one product.
   const auto previous = view<N, N>(T_[i - 1]);
   auto sum = view<N, N>(M_);
   sum.setZero();
@@ -101,14 +110,14 @@ void ThetaDController::form_right_side(std::size_t i) {
   auto left = view<N, Eigen::Dynamic>(left_);
   auto right = view<N, Eigen::Dynamic>(right_);
   Eigen::Index rank = 0;
-  auto add = [&](double weight, const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
-    left.template middleCols<M>(rank, m) = weight * view<N, M>(a);
-    right.template middleCols<M>(rank, m) = view<N, M>(b);
+  auto add = [&](double weight, const auto& a, const auto& b) {
+    left.template middleCols<M>(rank, m) = weight * a;
+    right.template middleCols<M>(rank, m) = b;
     rank += m;
   };
-  for (std::size_t j = 0; j < i; ++j) add(1.0, Y_[j], Z_[i - 1 - j]);
-  for (std::size_t j = 0; j + 2 <= i; ++j) add(0.5, Z_[j], Z_[i - 2 - j]);
-  for (std::size_t j = 1; j < i; ++j) add(0.5, Y_[j], Y_[i - j]);
+  add(1.0, view<N, twice(M)>(products_[0]).template leftCols<M>(m), view<N, twice(M)>(products_[i - 1]).template rightCols<M>(m));
+  for (std::size_t j = 1; j < i - j; ++j) add(1.0, view<N, M>(pairs_[j]), view<N, M>(pairs_[i - j]));
+  if (i % 2 == 0) add(0.5, view<N, M>(pairs_[i / 2]), view<N, M>(pairs_[i / 2]));
   sum.noalias() += left.leftCols(rank) * right.leftCols(rank).transpose();
   for (Eigen::Index a = 0; a < unknowns; ++a)
     packed_right_[a] = sum(unknown_row_[a], unknown_col_[a]) + sum(unknown_col_[a], unknown_row_[a]);
@@ -117,9 +126,10 @@ void ThetaDController::form_right_side(std::size_t i) {
 template <int N, int M>
 ThetaDController::LastTerm ThetaDController::evaluate_series(const Eigen::Ref<const Eigen::VectorXd>& x,
                                                              const Eigen::Ref<const Eigen::VectorXd>& input, double t,
-                                                             LastTerm wanted) {
+                                                             LastTerm wanted, bool later_pass) {
   const Eigen::Index n = F_.rows(), unknowns = n * (n + 1) / 2;
   const Deviation deviation = gather_deviation<N, M>(x, input, wanted);
+  if (!deviation.in_basis) first_term_current_ = false;
   for (std::size_t i = 1; i < T_.size(); ++i) {
     const bool last_term = i + 1 == T_.size();
     const LastTerm form = last_term && deviation.input_rows_only ? wanted : LastTerm::full;
@@ -127,7 +137,20 @@ ThetaDController::LastTerm ThetaDController::evaluate_series(const Eigen::Ref<co
     // Eqs. (24)–(25): T_i Ac0 + Ac0ᵀ T_i = e_i(t) W_i.
     const double e = perturbation_factor(settings_.k[static_cast<Eigen::Index>(i - 1)],
                                          settings_.l[static_cast<Eigen::Index>(i - 1)], t - t0_);
-    if (i == 1 && deviation.in_basis) {
+    if (i == 1 && deviation.in_basis && !last_term) {
+      if (later_pass && first_term_current_) {
+        // Same x and t as the last pass: only the coefficients that follow the input moved (the
+        // helicopter's rotor speed: 12 of 33), and T1 is linear in them.
+        for (Eigen::Index k = 0; k < coefficients_.size(); ++k) {
+          const double change = coefficients_[k] - first_term_coefficients_[k];
+          if (change != 0.0) first_term_.noalias() += (e * change) * basis_.col(k);
+        }
+      } else {
+        first_term_.noalias() = e * (basis_ * coefficients_);
+      }
+      first_term_coefficients_ = coefficients_;
+      first_term_current_ = true;
+    } else if (i == 1 && deviation.in_basis) {
       packed_term_.head(solved).noalias() = e * (basis_.topRows(solved) * coefficients_);
     } else {
       form_right_side<N, M>(i);
@@ -139,13 +162,16 @@ ThetaDController::LastTerm ThetaDController::evaluate_series(const Eigen::Ref<co
     }
     if (form == LastTerm::input_rows) return form;
     auto term = view<N, N>(T_[i]);
+    const Eigen::VectorXd& packed = i == 1 && first_term_current_ ? first_term_ : packed_term_;
     for (Eigen::Index a = 0; a < unknowns; ++a) {
-      term(unknown_row_[a], unknown_col_[a]) = packed_term_[a];
-      term(unknown_col_[a], unknown_row_[a]) = packed_term_[a];
+      term(unknown_row_[a], unknown_col_[a]) = packed[a];
+      term(unknown_col_[a], unknown_row_[a]) = packed[a];
     }
     if (last_term) break;  // Y, Z of the last term enter no W
-    view<N, M>(Y_[i]).noalias() = term * view<N, M>(g0_scaled_);
-    view<N, M>(Z_[i]).noalias() = term * view<N, M>(g_tilde_scaled_);
+    const Eigen::Index m = B_.cols();
+    auto products = view<N, twice(M)>(products_[i]);
+    products.noalias() = term * view<N, twice(M)>(scaled_inputs_);
+    view<N, M>(pairs_[i]) = products.template leftCols<M>(m) + view<N, twice(M)>(products_[i - 1]).template rightCols<M>(m);
   }
   return LastTerm::full;
 }
@@ -155,8 +181,8 @@ Eigen::MatrixXd ThetaDController::value_matrix(const Eigen::VectorXd& x, const E
   if (x.size() != F_.rows() || input.size() != B_.cols())
     throw Error("theta-d: value_matrix needs a state of " + std::to_string(F_.rows()) + " and an input of " +
                 std::to_string(B_.cols()) + " entries");
-  if (fixed_size_) evaluate_series<kFixedStates, kFixedInputs>(x, input, t, LastTerm::full);
-  else evaluate_series<Eigen::Dynamic, Eigen::Dynamic>(x, input, t, LastTerm::full);
+  if (fixed_size_) evaluate_series<kFixedStates, kFixedInputs>(x, input, t, LastTerm::full, false);
+  else evaluate_series<Eigen::Dynamic, Eigen::Dynamic>(x, input, t, LastTerm::full, false);
   Eigen::MatrixXd sum = T_[0];
   for (std::size_t i = 1; i < T_.size(); ++i) sum += T_[i];
   return sum;
@@ -188,7 +214,7 @@ void ThetaDController::run_passes(double t, const Eigen::Ref<const Eigen::Vector
         row_solutions_.middleCols(static_cast<Eigen::Index>(k) * n, n) * v_;
   auto value_gradient = view<N>(value_gradient_);
   for (last_iterations_ = 1;; ++last_iterations_) {
-    const LastTerm formed = evaluate_series<N, M>(x, guess_, t, wanted);
+    const LastTerm formed = evaluate_series<N, M>(x, guess_, t, wanted, last_iterations_ > 1);
     // Eq. (35): u = −R⁻¹ Bᵀ(x) (Σ T_i) V_track.
     const std::size_t full_terms = formed == LastTerm::full ? T_.size() : T_.size() - 1;
     value_gradient = view<N>(T0_v_);

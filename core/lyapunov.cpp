@@ -11,13 +11,42 @@
 #include <Eigen/LU>
 
 #include "core/error.hpp"
-#include "core/lapack.hpp"
 
 namespace thetad {
 namespace {
 
 std::string shape(const Eigen::Ref<const Eigen::MatrixXd>& M) {
   return std::to_string(M.rows()) + "x" + std::to_string(M.cols());
+}
+
+// The upper triangle of a square M from its lower one.
+void mirror_lower(Eigen::Ref<Eigen::MatrixXd> M) {
+  for (Eigen::Index j = 0; j < M.cols(); ++j)
+    for (Eigen::Index i = 0; i < j; ++i) M(i, j) = M(j, i);
+}
+
+// One block of the sweep below with a 2×2 diagonal block on either side: T_kk'Z + Z T_ll = r,
+// vec(Z) in column order, (I ⊗ T_kk' + T_ll' ⊗ I) vec(Z) = vec(r), by a fixed-size LU (the sums
+// λi + λj of its eigenvalues are bounded away from 0 by the check in solve()).
+template <int bi, int bj, class Reduced>
+void solve_block(const Eigen::MatrixXd& T, Eigen::MatrixXd& Y, Eigen::Index i0, Eigen::Index j0, bool symmetric,
+                 const Reduced& reduced) {
+  constexpr int size = bi * bj;
+  Eigen::Matrix<double, size, size> M = Eigen::Matrix<double, size, size>::Zero();
+  Eigen::Matrix<double, size, 1> r;
+  for (int b = 0; b < bj; ++b)
+    for (int a = 0; a < bi; ++a) {
+      const int row = a + bi * b;
+      r(row) = reduced(i0 + a, j0 + b, i0, j0);
+      for (int c = 0; c < bi; ++c) M(row, c + bi * b) += T(i0 + c, i0 + a);
+      for (int d = 0; d < bj; ++d) M(row, a + bi * d) += T(j0 + d, j0 + b);
+    }
+  const Eigen::Matrix<double, size, 1> z = M.partialPivLu().solve(r);
+  for (int b = 0; b < bj; ++b)
+    for (int a = 0; a < bi; ++a) {
+      Y(i0 + a, j0 + b) = z(a + bi * b);
+      if (symmetric) Y(j0 + b, i0 + a) = z(a + bi * b);
+    }
 }
 
 }  // namespace
@@ -36,39 +65,73 @@ Eigen::MatrixXd solve_lyapunov(const Eigen::Ref<const Eigen::MatrixXd>& A,
   return X;
 }
 
-static_assert(sizeof(lapack_int) == sizeof(int) && sizeof(lapack_logical) == sizeof(int),
-              "LyapunovWorkspace stores LAPACK integers as int");
-
 LyapunovWorkspace::LyapunovWorkspace(Eigen::Index n)
-    : n_(static_cast<int>(n)), T_(n, n), U_(n, n), Y_(n, n), scratch_(n, n), wr_(n), wi_(n), bwork_(n) {
+    : n_(n), schur_(std::max<Eigen::Index>(n, 1)), Y_(n, n), scratch_(n, n), wr_(n), wi_(n) {
   if (n < 1) throw Error("LyapunovWorkspace: n must be at least 1, got " + std::to_string(n));
-  // dgees' optimal workspace (a query), so that the blocked Hessenberg reduction can run.
-  double optimal = 0.0;
-  lapack_int sdim = 0;
-  const lapack_int info = LAPACKE_dgees_work(LAPACK_COL_MAJOR, 'V', 'N', nullptr, n_, T_.data(), n_, &sdim,
-                                             wr_.data(), wi_.data(), U_.data(), n_, &optimal, -1, bwork_.data());
-  if (info != 0) throw Error("LyapunovWorkspace: dgees workspace query failed (info " + std::to_string(info) + ")");
-  work_.resize(std::max<Eigen::Index>(static_cast<Eigen::Index>(optimal), 3 * n));
 }
 
-void LyapunovWorkspace::schur(const Eigen::Ref<const Eigen::MatrixXd>& A, char vectors) {
+void LyapunovWorkspace::factor(const Eigen::Ref<const Eigen::MatrixXd>& A) {
+  factored_ = false;
   if (A.rows() != n_ || A.cols() != n_)
     throw Error("solve_lyapunov: A must be " + std::to_string(n_) + "x" + std::to_string(n_) + ", got " + shape(A));
   if (!A.allFinite()) throw Error("solve_lyapunov: A has non-finite entries");
-  T_ = A;
   a_norm_ = A.norm();
-  lapack_int sdim = 0;
-  const lapack_int info =
-      LAPACKE_dgees_work(LAPACK_COL_MAJOR, vectors, 'N', nullptr, n_, T_.data(), n_, &sdim, wr_.data(), wi_.data(),
-                         U_.data(), n_, work_.data(), static_cast<lapack_int>(work_.size()), bwork_.data());
-  if (info != 0)
-    throw Error("solve_lyapunov: the real Schur form of A did not converge (dgees info " + std::to_string(info) + ")");
-  factored_ = vectors == 'V';
+  schur_.compute(A, true);
+  if (schur_.info() != Eigen::Success) throw Error("solve_lyapunov: the real Schur form of A did not converge");
+  // The eigenvalues of the diagonal blocks; RealSchur leaves 2×2 blocks for complex pairs only.
+  const Eigen::MatrixXd& T = schur_.matrixT();
+  for (Eigen::Index i = 0; i < n_;) {
+    if (i + 1 < n_ && T(i + 1, i) != 0.0) {
+      const double p = 0.5 * (T(i, i) - T(i + 1, i + 1));
+      const double scale = std::max({std::abs(p), std::abs(T(i, i + 1)), std::abs(T(i + 1, i))});
+      const double q = p / scale, b = T(i, i + 1) / scale, c = T(i + 1, i) / scale;
+      const double z = scale * std::sqrt(std::abs(q * q + b * c));
+      wr_(i) = wr_(i + 1) = T(i + 1, i + 1) + p;
+      wi_(i) = z;
+      wi_(i + 1) = -z;
+      i += 2;
+    } else {
+      wr_(i) = T(i, i);
+      wi_(i) = 0.0;
+      ++i;
+    }
+  }
+  factored_ = true;
 }
 
-void LyapunovWorkspace::factor(const Eigen::Ref<const Eigen::MatrixXd>& A) { schur(A, 'V'); }
-
-void LyapunovWorkspace::compute_eigenvalues(const Eigen::Ref<const Eigen::MatrixXd>& A) { schur(A, 'N'); }
+// Block forward substitution on T'Y + YT = C, T upper quasi-triangular: the (k, l) block of the
+// equation is T_kk'Y_kl + Y_kl T_ll = C_kl − Σ_{i<k} T_ik'Y_il − Σ_{j<l} Y_kj T_jl, where every Y
+// on the right is known when the blocks are visited column by column, top to bottom. A symmetric
+// C has a symmetric Y: then only the blocks k ≥ l are solved and mirrored, and the row sums read
+// columns instead (Y_kj = Y_jk'), which keeps every inner product contiguous.
+void LyapunovWorkspace::sweep(bool symmetric) {
+  const Eigen::MatrixXd& T = schur_.matrixT();
+  const auto block_size = [&](Eigen::Index i) { return i + 1 < n_ && T(i + 1, i) != 0.0 ? 2 : 1; };
+  // The right side of entry (i, j) with the known terms subtracted.
+  const auto reduced = [&](Eigen::Index i, Eigen::Index j, Eigen::Index i0, Eigen::Index j0) {
+    const double row_terms = symmetric ? Y_.col(i).head(j0).dot(T.col(j).head(j0))
+                                       : Y_.row(i).head(j0).dot(T.col(j).head(j0));
+    return Y_(i, j) - T.col(i).head(i0).dot(Y_.col(j).head(i0)) - row_terms;
+  };
+  for (Eigen::Index j0 = 0; j0 < n_;) {
+    const Eigen::Index bj = block_size(j0);
+    for (Eigen::Index i0 = symmetric ? j0 : 0; i0 < n_;) {
+      const Eigen::Index bi = block_size(i0);
+      if (bi == 1 && bj == 1) {
+        Y_(i0, j0) = reduced(i0, j0, i0, j0) / (T(i0, i0) + T(j0, j0));
+        if (symmetric) Y_(j0, i0) = Y_(i0, j0);
+      } else if (bi == 2 && bj == 2) {
+        solve_block<2, 2>(T, Y_, i0, j0, symmetric, reduced);
+      } else if (bi == 2) {
+        solve_block<2, 1>(T, Y_, i0, j0, symmetric, reduced);
+      } else {
+        solve_block<1, 2>(T, Y_, i0, j0, symmetric, reduced);
+      }
+      i0 += bi;
+    }
+    j0 += bj;
+  }
+}
 
 void LyapunovWorkspace::solve(const Eigen::Ref<const Eigen::MatrixXd>& Q, Eigen::Ref<Eigen::MatrixXd> X) {
   if (!factored_) throw Error("LyapunovWorkspace::solve: factor(A) first");
@@ -77,10 +140,10 @@ void LyapunovWorkspace::solve(const Eigen::Ref<const Eigen::MatrixXd>& Q, Eigen:
                 shape(Q) + " and X " + std::to_string(X.rows()) + "x" + std::to_string(X.cols()));
 
   // The operator's eigenvalues are λi + λj; checking them here gives a message that names the
-  // cause instead of dtrsyl's silent perturbation. Squared moduli: no hypot in the O(n²) loop.
+  // cause instead of a silently huge solution. Squared moduli: no hypot in the O(n²) loop.
   double smallest_squared = std::numeric_limits<double>::infinity();
-  for (int j = 0; j < n_; ++j)
-    for (int i = j; i < n_; ++i) {
+  for (Eigen::Index j = 0; j < n_; ++j)
+    for (Eigen::Index i = j; i < n_; ++i) {
       const double re = wr_(i) + wr_(j);
       const double im = wi_(i) + wi_(j);
       smallest_squared = std::min(smallest_squared, re * re + im * im);
@@ -97,24 +160,25 @@ void LyapunovWorkspace::solve(const Eigen::Ref<const Eigen::MatrixXd>& Q, Eigen:
   }
 
   // A = U T U' turns A'X + XA = −Q into T'Y + YT = −U'QU, Y = U'XU.
-  scratch_.noalias() = U_.transpose() * Q;
-  Y_.noalias() = -scratch_ * U_;
-  double scale = 1.0;
-  const lapack_int info =
-      LAPACKE_dtrsyl_work(LAPACK_COL_MAJOR, 'T', 'N', 1, n_, n_, T_.data(), n_, T_.data(), n_, Y_.data(), n_, &scale);
-  if (info < 0) throw Error("solve_lyapunov: dtrsyl rejected argument " + std::to_string(-info));
-  if (info == 1)
-    throw Error("solve_lyapunov: A and -A have nearly equal eigenvalues; dtrsyl had to perturb "
-                "them (min |λi + λj| = " + std::to_string(smallest) + ")");
-  scratch_.noalias() = U_ * Y_;
-  X.noalias() = scratch_ * U_.transpose();
-  // scale < 1 only when dtrsyl scaled the right side down to avoid overflow.
-  if (scale != 1.0) X /= scale;
-  if (!X.allFinite())
-    throw Error("solve_lyapunov: the solution overflowed (dtrsyl scale " + std::to_string(scale) + ")");
-  if (Q == Q.transpose())
-    for (int j = 0; j < n_; ++j)
-      for (int i = 0; i < j; ++i) X(i, j) = X(j, i) = 0.5 * (X(i, j) + X(j, i));
+  const Eigen::MatrixXd& U = schur_.matrixU();
+  const bool symmetric = Q == Q.transpose();
+  // Symmetric: both triple products are formed on their lower half only, and mirrored.
+  scratch_.noalias() = U.transpose() * Q;
+  if (symmetric) {
+    Y_.triangularView<Eigen::Lower>() = -scratch_ * U;
+    mirror_lower(Y_);
+  } else {
+    Y_.noalias() = -scratch_ * U;
+  }
+  sweep(symmetric);
+  scratch_.noalias() = U * Y_;
+  if (symmetric) {
+    X.triangularView<Eigen::Lower>() = scratch_ * U.transpose();
+    mirror_lower(X);
+  } else {
+    X.noalias() = scratch_ * U.transpose();
+  }
+  if (!X.allFinite()) throw Error("solve_lyapunov: the solution is not finite (the equation is too ill-conditioned)");
 }
 
 ConstantLyapunovSolver::ConstantLyapunovSolver(const Eigen::Ref<const Eigen::MatrixXd>& Ac)

@@ -10,15 +10,13 @@
 //    construction; a solve is then one dense matrix–vector product and allocates nothing.
 //    docs/performance.md has the measurements behind this choice.
 
-#include <vector>
-
 #include <Eigen/Dense>
 
 namespace thetad {
 
 // Returns X with A'X + XA + Q = 0 (A n×n, Q n×n; Q need not be symmetric, but if it is, X is
-// returned exactly symmetric). Bartels–Stewart: real Schur form of A (LAPACK dgees), then the
-// quasi-triangular Sylvester solve (dtrsyl).
+// returned exactly symmetric). Bartels–Stewart: real Schur form of A, then a sweep over the
+// quasi-triangular equation (LyapunovWorkspace).
 // Throws thetad::Error on dimension mismatch, non-finite entries, and when the Lyapunov operator
 // is singular to working precision: min |λi(A) + λj(A)| ≤ 1e-10·max(‖A‖_F, 1), i.e. A and −A
 // share an eigenvalue (e.g. A has eigenvalues ±1, or any eigenvalue on the imaginary axis).
@@ -26,19 +24,22 @@ Eigen::MatrixXd solve_lyapunov(const Eigen::Ref<const Eigen::MatrixXd>& A,
                                const Eigen::Ref<const Eigen::MatrixXd>& Q);
 
 // solve_lyapunov for a new A at every call of a hot path (Newton–Kleinman inside a control step):
-// the LAPACK workspaces and every buffer are sized once, at construction, for one n, and a solve
-// allocates nothing. Two phases, because a caller often wants A's spectrum before it solves: the
-// Schur form of A gives it for free.
+// every buffer is sized once, at construction, for one n, and neither phase allocates. Two phases,
+// because a caller often wants A's spectrum before it solves, and solves several equations with
+// one A: the Schur form of A gives the spectrum for free and serves every solve.
+//
+// The Schur form is Eigen's RealSchur and the quasi-triangular equation T'Y + YT = C is solved by
+// a block sweep written here, which visits only the lower half when C is symmetric: measured in
+// bench/riccati_bench.cpp against LAPACK dgees + dtrsyl (the reference LAPACK of Debian), on the
+// closed loops of the paper's problem (docs/performance.md).
 class LyapunovWorkspace {
  public:
   explicit LyapunovWorkspace(Eigen::Index n);
 
-  // Real Schur form A = U T U' (LAPACK dgees) and the eigenvalues of A. Throws thetad::Error on a
-  // size mismatch, non-finite entries or when dgees does not converge.
+  // Real Schur form A = U T U' and the eigenvalues of A. Throws thetad::Error on a size mismatch,
+  // non-finite entries or when the QR iteration does not converge.
   void factor(const Eigen::Ref<const Eigen::MatrixXd>& A);
-  // The eigenvalues of A only (no Schur vectors, cheaper): a later solve() needs factor() first.
-  void compute_eigenvalues(const Eigen::Ref<const Eigen::MatrixXd>& A);
-  // Eigenvalues of the last factor()ed or compute_eigenvalues()ed A, in Schur order.
+  // Eigenvalues of the last factor()ed A, in Schur order.
   const Eigen::VectorXd& eigenvalues_real() const { return wr_; }
   const Eigen::VectorXd& eigenvalues_imag() const { return wi_; }
   double max_real_eigenvalue() const { return wr_.maxCoeff(); }
@@ -48,13 +49,13 @@ class LyapunovWorkspace {
   void solve(const Eigen::Ref<const Eigen::MatrixXd>& Q, Eigen::Ref<Eigen::MatrixXd> X);
 
  private:
-  void schur(const Eigen::Ref<const Eigen::MatrixXd>& A, char vectors);
+  // T'Y + YT = Y in place, T = schur_.matrixT().
+  void sweep(bool symmetric);
 
-  int n_;  // LAPACK integers: lapack_int is int (static_assert in lyapunov.cpp)
-  Eigen::MatrixXd T_, U_;  // A = U T U'
+  Eigen::Index n_;
+  Eigen::RealSchur<Eigen::MatrixXd> schur_;  // A = U T U'
   Eigen::MatrixXd Y_, scratch_;  // U'XU, and the one intermediate of a triple product
-  Eigen::VectorXd wr_, wi_, work_;
-  std::vector<int> bwork_;
+  Eigen::VectorXd wr_, wi_;
   double a_norm_ = 0.0;
   bool factored_ = false;
 };

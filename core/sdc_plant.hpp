@@ -32,6 +32,18 @@ class SdcPlant {
   virtual void f(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& u,
                  Eigen::Ref<Eigen::VectorXd> xdot) const = 0;
 
+  // The Jacobians of f at (x, u), dfdx (n x n) and dfdu (n x m), exact (by hand or by automatic
+  // differentiation) for a plant that has them: the optimal control transcription needs them. A
+  // plant without returns false (the default) and writes nothing.
+  virtual bool jacobian(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& u,
+                        Eigen::Ref<Eigen::MatrixXd> dfdx, Eigen::Ref<Eigen::MatrixXd> dfdu) const {
+    (void)x;
+    (void)u;
+    (void)dfdx;
+    (void)dfdu;
+    return false;
+  }
+
   // Whether F and B change with the input (then sdc(x, u) needs the input being computed, and a
   // controller iterates to the fixed point; otherwise one evaluation is exact).
   virtual bool sdc_depends_on_input() const { return false; }

@@ -197,10 +197,13 @@ class ShootingNlp final : public Ipopt::TNLP {
     });
   }
 
+  // The derivatives, and the values with them.
   bool derivatives(const Ipopt::Number* x, bool new_x) {
-    return once_per_point(x, new_x, have_derivatives_, [this](std::size_t k) {
-      interval_.jacobian(static_cast<int>(k), node_, u_, derivatives_[k]);
+    const bool done = once_per_point(x, new_x, have_derivatives_, [this](std::size_t k) {
+      costs_[k] = interval_.linearize(static_cast<int>(k), node_, u_, next_[k], derivatives_[k]);
     });
+    if (done) have_values_ = true;
+    return done;
   }
 
   const OptimalControlProblem& problem_;
@@ -240,13 +243,14 @@ ShootingTrajectory shooting_guess(const OptimalControlProblem& problem, const Ei
   const double period = problem.controller_period();
   ShootingTrajectory guess{Eigen::MatrixXd(N + 1, d), Eigen::MatrixXd(N, m)};
   PositionIntegral error_integral;
+  error_integral.value = problem.initial_integral;
   for (int k = 0; k < N; ++k) {
     guess.nodes.row(k).head(n) = states.row(k * K);
     if (problem.sampled_position_integral) guess.nodes.row(k).tail<3>() = error_integral.value.transpose();
     guess.inputs.row(k) = inputs.middleRows(k * K, K).colwise().mean();
     for (int j = k * K; j < (k + 1) * K; ++j) {
       const Eigen::Vector3d position = states.row(j).head<3>().transpose();
-      error_integral.accumulate(position - problem.reference->position(j * period), period);
+      error_integral.accumulate(position - problem.reference->position((problem.first_sample + j) * period), period);
     }
   }
   ShootingInterval interval(problem);
@@ -264,6 +268,12 @@ OptimalControlSolution solve_optimal_control(const OptimalControlProblem& proble
   check_shape("the start's nodes", start.nodes, N + 1, d);
   check_shape("the start's inputs", start.inputs, N, m);
 
+  {  // A plant without a Jacobian, or without a value at the start, fails here with its reason, not in Ipopt.
+    ShootingInterval first(problem);
+    Eigen::VectorXd next;
+    Eigen::MatrixXd derivative;
+    first.linearize(0, first.initial_node(), start.inputs.row(0).transpose(), next, derivative);
+  }
   Ipopt::SmartPtr<ShootingNlp> nlp = new ShootingNlp(problem, start, settings);
   OptimalControlSolution solution;
   solution.outcome = solve_with_ipopt(*nlp, settings.ipopt);

@@ -18,7 +18,7 @@ struct ShootingTrajectory {
 };
 
 // The warm start from a flight: `states` (at least samples() rows of n) and `inputs` (at least
-// samples() rows of m) at every controller sample from t = 0. Nodes are the flight's states at
+// samples() rows of m) at every controller sample from the problem's start. Nodes are the flight's states at
 // the interval starts (with the integral it accumulated) and the last node what the last
 // interval reaches; each interval holds the mean of the flight's inputs over it. Throws
 // thetad::Error when the flight is too short or mis-sized.
@@ -26,8 +26,7 @@ ShootingTrajectory shooting_guess(const OptimalControlProblem& problem, const Ei
                                   const Eigen::MatrixXd& inputs);
 
 struct OptimalControlSettings {
-  // tol 1e-6 on the scaled problem: J agrees to ~1e-9 relative with tighter solves, which with
-  // central-difference derivatives end at Ipopt's acceptable level rather than at tol.
+  // tol 1e-6 on the scaled problem: J agrees to ~1e-9 relative with tighter solves.
   IpoptRun ipopt{.max_iterations = 1000,
                  .tolerance = 1e-6,
                  .constraint_tolerance = 1e-8,
@@ -50,10 +49,11 @@ struct OptimalControlSolution {
 };
 
 // Solves `problem` by multiple shooting with Ipopt from `start`: equality constraints node_{k+1} =
-// interval map(node_k, u_k), the first node fixed at the initial state, no bounds; first
-// derivatives by ShootingInterval::jacobian (sparse: one dense block per interval), Hessian by
-// L-BFGS. Throws thetad::Error for an invalid problem or start, or when the plant has no value at
-// the start; a solve that does not converge is returned with its status (outcome.converged false).
+// interval map(node_k, u_k), the first node fixed at the initial state, no bounds; exact first
+// derivatives by ShootingInterval::linearize (sparse: one dense block per interval), Hessian by
+// L-BFGS. Throws thetad::Error for an invalid problem or start, when the plant gives no Jacobian
+// (SdcPlant::jacobian) or has no value at the start; a solve that does not converge is returned
+// with its status (outcome.converged false).
 OptimalControlSolution solve_optimal_control(const OptimalControlProblem& problem, const ShootingTrajectory& start,
                                              const OptimalControlSettings& settings = {});
 

@@ -30,6 +30,8 @@ void OptimalControlProblem::validate() const {
   if (controller_period_steps < 1) fail("controller_period_steps must be at least 1");
   if (interval_periods < 1) fail("interval_periods must be at least 1");
   if (intervals < 1) fail("intervals must be at least 1");
+  if (first_sample < 0) fail("first_sample must not be negative");
+  if (!initial_integral.allFinite()) fail("initial_integral is not finite");
   if (sampled_position_integral && (*sampled_position_integral < 3 || *sampled_position_integral + 3 > n))
     fail("sampled_position_integral " + std::to_string(*sampled_position_integral) +
          " leaves no room for three integral entries after the position x[0..2] in " + std::to_string(n) + " states");

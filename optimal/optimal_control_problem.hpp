@@ -22,6 +22,9 @@ struct OptimalControlProblem {
   const SdcPlant* plant = nullptr;
   const ReferenceTrajectory* reference = nullptr;
   Eigen::VectorXd initial_state;
+  // The controller sample the horizon starts at, t = first_sample T_c: the reference is read, and
+  // its integral accumulated, from t = 0 as in the flight the horizon is a segment of.
+  int first_sample = 0;
   Eigen::VectorXd state_weights;  // diagonal of Q (n)
   Eigen::VectorXd input_weights;  // diagonal of R (m)
   double dt = 1e-3;               // RK4 step (s): the simulator's
@@ -33,10 +36,13 @@ struct OptimalControlProblem {
   // the plant's own integral states: set it to heli::kXi to price as simulate() does. Unset: the
   // tracking vector of the state itself, as simulate_plant() prices it.
   std::optional<int> sampled_position_integral;
+  // That sampled integral at the start of the horizon (0 from the start of a flight).
+  Eigen::Vector3d initial_integral = Eigen::Vector3d::Zero();
 
   double controller_period() const { return dt * controller_period_steps; }
   int samples() const { return intervals * interval_periods; }
   double horizon() const { return samples() * controller_period(); }
+  double start_time() const { return first_sample * controller_period(); }
   // The entries of a shooting node: the plant state, then the sampled integral (3) when priced.
   int node_dim() const;
 

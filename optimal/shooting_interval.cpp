@@ -1,8 +1,6 @@
 #include "optimal/shooting_interval.hpp"
 
-#include <algorithm>
-#include <cmath>
-#include <limits>
+#include "core/error.hpp"
 
 namespace thetad {
 
@@ -11,82 +9,150 @@ ShootingInterval::ShootingInterval(const OptimalControlProblem& problem)
       n_(problem.plant->state_dim()),
       m_(problem.plant->input_dim()),
       node_dim_(problem.node_dim()),
+      tracking_gain_(n_, n_),
       workspace_(n_),
       x_(n_),
       v_(n_),
-      node_plus_(node_dim_),
-      node_minus_(node_dim_),
-      u_plus_(m_),
-      u_minus_(m_),
-      next_plus_(node_dim_),
-      next_minus_(node_dim_) {
+      stage_(n_),
+      next_state_(n_),
+      sensitivity_(n_, n_ + m_),
+      integral_sensitivity_(3, n_ + m_),
+      stage_sensitivity_(n_, n_ + m_),
+      dfdx_(n_, n_),
+      dfdu_(n_, m_),
+      cost_gradient_(n_ + m_) {
+  for (auto& slope : slopes_) slope.resize(n_, n_ + m_);
   // The reference as the simulators give it to the controller and the cost: its integral by the
   // PositionIntegral rule.
   const double period = problem.controller_period();
   PositionIntegral integral;
   references_.reserve(static_cast<std::size_t>(problem.samples()));
-  for (int k = 0; k < problem.samples(); ++k) {
+  for (int k = 0; k < problem.first_sample + problem.samples(); ++k) {
     const Eigen::Vector3d position = problem.reference->position(k * period);
-    references_.push_back({position, integral.value});
+    if (k >= problem.first_sample) references_.push_back({position, integral.value});
     integral.accumulate(position, period);
   }
+  // The tracking vector is the state less the reference (affine in the state), so its columns at
+  // a zero reference are exact: v(e_j) - v(0). The rows priced by the sampled integral instead are 0.
+  const Reference zero;
+  Eigen::VectorXd unit = Eigen::VectorXd::Zero(n_), at_zero(n_);
+  problem.plant->tracking_vector(unit, zero, at_zero);
+  for (int j = 0; j < n_; ++j) {
+    unit[j] = 1.0;
+    problem.plant->tracking_vector(unit, zero, v_);
+    tracking_gain_.col(j) = v_ - at_zero;
+    unit[j] = 0.0;
+  }
+  if (problem.sampled_position_integral) tracking_gain_.middleRows<3>(*problem.sampled_position_integral).setZero();
 }
 
 Eigen::VectorXd ShootingInterval::initial_node() const {
   Eigen::VectorXd node = Eigen::VectorXd::Zero(node_dim_);
   node.head(n_) = problem_.initial_state;
+  if (problem_.sampled_position_integral) node.tail<3>() = problem_.initial_integral;
   return node;
 }
 
 double ShootingInterval::propagate(int interval, const Eigen::VectorXd& node, const Eigen::VectorXd& u,
                                    Eigen::VectorXd& next, const SampleVisitor& visit) {
+  return run(interval, node, u, next, visit, false);
+}
+
+double ShootingInterval::linearize(int interval, const Eigen::VectorXd& node, const Eigen::VectorXd& u,
+                                   Eigen::VectorXd& next, Eigen::MatrixXd& derivative) {
+  const double cost = run(interval, node, u, next, {}, true);
+  derivative.resize(node_dim_ + 1, node_dim_ + m_);
+  derivative.setZero();
+  derivative.topLeftCorner(n_, n_) = sensitivity_.leftCols(n_);
+  derivative.block(0, node_dim_, n_, m_) = sensitivity_.rightCols(m_);
+  derivative.row(node_dim_).head(n_) = cost_gradient_.head(n_);
+  derivative.row(node_dim_).tail(m_) = cost_gradient_.tail(m_);
+  if (problem_.sampled_position_integral) {
+    derivative.block(n_, 0, 3, n_) = integral_sensitivity_.leftCols(n_);
+    derivative.block<3, 3>(n_, n_).setIdentity();  // the integral carries on from the node's
+    derivative.block(n_, node_dim_, 3, m_) = integral_sensitivity_.rightCols(m_);
+    derivative.row(node_dim_).segment<3>(n_) = cost_per_integral_;
+  }
+  return cost;
+}
+
+double ShootingInterval::run(int interval, const Eigen::VectorXd& node, const Eigen::VectorXd& u, Eigen::VectorXd& next,
+                             const SampleVisitor& visit, bool sensitivities) {
   const double period = problem_.controller_period();
   const auto& priced = problem_.sampled_position_integral;
   next = node;
   double cost = 0.0;
+  if (sensitivities) {
+    sensitivity_.setZero();
+    sensitivity_.leftCols(n_).setIdentity();
+    integral_sensitivity_.setZero();
+    cost_gradient_.setZero();
+    cost_per_integral_.setZero();
+  }
   for (int j = 0; j < problem_.interval_periods; ++j) {
     const int k = interval * problem_.interval_periods + j;
     const Reference& reference = references_[static_cast<std::size_t>(k)];
     x_ = next.head(n_);
     problem_.plant->tracking_vector(x_, reference, v_);
     if (priced) v_.segment<3>(*priced) = next.tail<3>();
-    if (visit) visit(k * period, next, v_, u);
+    if (visit) visit((problem_.first_sample + k) * period, next, v_, u);
     // The same expression as the run metrics', so that a flight priced here costs what it cost.
     cost += 0.5 * (v_.cwiseAbs2().dot(problem_.state_weights) + u.cwiseAbs2().dot(problem_.input_weights)) * period;
+    if (sensitivities) {
+      const Eigen::RowVectorXd weighted = period * v_.cwiseProduct(problem_.state_weights).transpose();
+      cost_gradient_.noalias() += (weighted * tracking_gain_) * sensitivity_;
+      cost_gradient_.tail(m_) += period * u.cwiseProduct(problem_.input_weights).transpose();
+      if (priced) {
+        cost_gradient_.noalias() += weighted.segment<3>(*priced) * integral_sensitivity_;
+        cost_per_integral_ += weighted.segment<3>(*priced);
+        integral_sensitivity_ += period * sensitivity_.topRows<3>();
+      }
+    }
     if (priced) next.tail<3>() += (x_.head<3>() - reference.position) * period;
-    for (int step = 0; step < problem_.controller_period_steps; ++step)
-      sim::rk4_step(*problem_.plant, u, problem_.dt, workspace_, x_);
+    for (int step = 0; step < problem_.controller_period_steps; ++step) {
+      if (!sensitivities) {
+        sim::rk4_step(*problem_.plant, u, problem_.dt, workspace_, x_);
+        continue;
+      }
+      next_state_ = x_;
+      sim::rk4_step(*problem_.plant, u, problem_.dt, workspace_, next_state_);
+      step_sensitivity(u);
+      x_ = next_state_;
+    }
     next.head(n_) = x_;
   }
   return cost;
 }
 
-void ShootingInterval::jacobian(int interval, const Eigen::VectorXd& node, const Eigen::VectorXd& u,
-                                Eigen::MatrixXd& derivative) {
-  const double step_scale = std::cbrt(std::numeric_limits<double>::epsilon());
-  derivative.resize(node_dim_ + 1, node_dim_ + m_);
-  for (int j = 0; j < node_dim_ + m_; ++j) {
-    node_plus_ = node_minus_ = node;
-    u_plus_ = u_minus_ = u;
-    const bool on_node = j < node_dim_;
-    const double value = on_node ? node[j] : u[j - node_dim_];
-    const double h = step_scale * std::max(1.0, std::abs(value));
-    // The step actually taken, as represented: (z + h) − z is not h in floating point.
-    double span;
-    if (on_node) {
-      node_plus_[j] = value + h;
-      node_minus_[j] = value - h;
-      span = node_plus_[j] - node_minus_[j];
-    } else {
-      u_plus_[j - node_dim_] = value + h;
-      u_minus_[j - node_dim_] = value - h;
-      span = u_plus_[j - node_dim_] - u_minus_[j - node_dim_];
-    }
-    const double cost_plus = propagate(interval, node_plus_, u_plus_, next_plus_);
-    const double cost_minus = propagate(interval, node_minus_, u_minus_, next_minus_);
-    derivative.col(j).head(node_dim_) = (next_plus_ - next_minus_) / span;
-    derivative(node_dim_, j) = (cost_plus - cost_minus) / span;
+const Eigen::VectorXd& ShootingInterval::stage(int i) {
+  const double dt = problem_.dt;
+  switch (i) {  // as rk4_step forms them, so that the Jacobians are taken where f was
+    case 0: stage_ = x_; break;
+    case 1: stage_ = x_ + (0.5 * dt) * workspace_.k1; break;
+    case 2: stage_ = x_ + (0.5 * dt) * workspace_.k2; break;
+    default: stage_ = x_ + dt * workspace_.k3;
   }
+  return stage_;
+}
+
+// RK4's stage slopes k_i = f(x + c_i dt k_{i-1}, u) differentiate to K_i = A_i (S + c_i dt K_{i-1})
+// + [0 B_i], with A_i, B_i the plant's Jacobian at stage i; the step S+ = S + dt/6 (K1 + 2 K2 +
+// 2 K3 + K4) is the exact derivative of the step x+ that rk4_step takes.
+void ShootingInterval::step_sensitivity(const Eigen::VectorXd& u) {
+  const double dt = problem_.dt;
+  const double offset[4] = {0.0, 0.5 * dt, 0.5 * dt, dt};
+  for (int i = 0; i < 4; ++i) {
+    if (!problem_.plant->jacobian(stage(i), u, dfdx_, dfdu_))
+      throw Error("optimal control: the plant gives no Jacobian of f (SdcPlant::jacobian), which the transcription needs");
+    if (i == 0) {
+      slopes_[0].noalias() = dfdx_ * sensitivity_;
+    } else {
+      stage_sensitivity_ = sensitivity_ + offset[i] * slopes_[i - 1];
+      slopes_[i].noalias() = dfdx_ * stage_sensitivity_;
+    }
+    slopes_[i].rightCols(m_) += dfdu_;
+  }
+  sensitivity_ += (dt / 6.0) * (slopes_[0] + 2.0 * slopes_[1] + 2.0 * slopes_[2] + slopes_[3]);
 }
 
 }  // namespace thetad

@@ -28,21 +28,38 @@ class ShootingInterval {
   double propagate(int interval, const Eigen::VectorXd& node, const Eigen::VectorXd& u, Eigen::VectorXd& next,
                    const SampleVisitor& visit = {});
 
-  // d(next node, cost)/d(node, u): (node_dim + 1) x (node_dim + m), the cost in the last row, by
-  // central differences with steps eps^(1/3) max(1, |z_j|) (about 1e-10 relative where the plant
-  // is smooth; exact to rounding where the map is at most quadratic, as on a linear plant).
-  // Throws thetad::Error when the plant has no value at a perturbed point.
-  void jacobian(int interval, const Eigen::VectorXd& node, const Eigen::VectorXd& u, Eigen::MatrixXd& derivative);
+  // propagate() and its derivative d(next node, cost)/d(node, u): (node_dim + 1) x (node_dim + m),
+  // the cost in the last row. Exact to rounding: the RK4 steps' own sensitivities (each stage's
+  // variational equation with the plant's exact Jacobian, SdcPlant::jacobian), not differences.
+  // Throws thetad::Error when the plant has no value on the way or gives no Jacobian.
+  double linearize(int interval, const Eigen::VectorXd& node, const Eigen::VectorXd& u, Eigen::VectorXd& next,
+                   Eigen::MatrixXd& derivative);
 
-  // The node at the start of the horizon: the initial state, the integral 0.
+  // The node at the start of the horizon: the initial state and integral.
   Eigen::VectorXd initial_node() const;
 
  private:
+  // propagate(), and with `sensitivities` the derivatives linearize() assembles.
+  double run(int interval, const Eigen::VectorXd& node, const Eigen::VectorXd& u, Eigen::VectorXd& next,
+             const SampleVisitor& visit, bool sensitivities);
+  // The stage of an RK4 step that starts from x_ (the stages rk4_step evaluates f at).
+  const Eigen::VectorXd& stage(int i);
+  // Advances sensitivity_ (d x / d(x at the node, u)) over the RK4 step from x_ whose stage slopes
+  // are in workspace_.
+  void step_sensitivity(const Eigen::VectorXd& u);
+
   const OptimalControlProblem& problem_;
   int n_, m_, node_dim_;
-  std::vector<Reference> references_;  // per controller sample
+  std::vector<Reference> references_;  // per controller sample of the horizon
+  Eigen::MatrixXd tracking_gain_;      // d v / d x as priced: the tracking vector is affine in the state
   sim::Rk4Workspace workspace_;
-  Eigen::VectorXd x_, v_, node_plus_, node_minus_, u_plus_, u_minus_, next_plus_, next_minus_;
+  Eigen::VectorXd x_, v_, stage_, next_state_;
+  // Sensitivities, columns (x at the node, u): of the state, of the sampled integral, of the stage
+  // states and slopes; the plant's Jacobian at a stage; the cost's gradient (the node's integral
+  // columns apart).
+  Eigen::MatrixXd sensitivity_, integral_sensitivity_, stage_sensitivity_, slopes_[4], dfdx_, dfdu_;
+  Eigen::RowVectorXd cost_gradient_;
+  Eigen::RowVector3d cost_per_integral_;
 };
 
 }  // namespace thetad

@@ -82,4 +82,11 @@ void LinearPlant::sdc(const Eigen::Ref<const Eigen::VectorXd>&, const Eigen::Ref
   B = B_;
 }
 
+bool LinearPlant::jacobian(const Eigen::Ref<const Eigen::VectorXd>&, const Eigen::Ref<const Eigen::VectorXd>&,
+                           Eigen::Ref<Eigen::MatrixXd> dfdx, Eigen::Ref<Eigen::MatrixXd> dfdu) const {
+  dfdx = A_;
+  dfdu = B_;
+  return true;
+}
+
 }  // namespace thetad

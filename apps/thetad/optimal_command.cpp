@@ -18,7 +18,12 @@ CLI::App* add_optimal_command(CLI::App& app, OptimalArguments& arguments) {
                  "multiple shooting), flown ideal; write the optimal trajectory beside the flights. Exit code 0: "
                  "Ipopt converged, 3: it did not");
   optimal->add_option("--scenario", arguments.scenario, "Scenario file or the name of a shipped one")->required();
-  optimal->add_option("--horizon", arguments.horizon, "Seconds from the start of the scenario (a whole number of control intervals)")
+  optimal->add_option("--start", arguments.start,
+                      "Seconds into the scenario where the segment starts, from each controller's state there (a whole "
+                      "number of controller periods)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 86400.0));
+  optimal->add_option("--horizon", arguments.horizon, "Seconds of the segment (a whole number of control intervals)")
       ->required()
       ->check(CLI::Range(1e-6, 86400.0));
   optimal->add_option("--control-interval", arguments.control_interval,
@@ -45,7 +50,7 @@ CLI::App* add_optimal_command(CLI::App& app, OptimalArguments& arguments) {
 
 int run_optimal(const OptimalArguments& arguments) {
   RunControls controls;
-  controls.duration = arguments.horizon;
+  controls.duration = arguments.start + arguments.horizon;
   controls.ideal = true;  // the optimum is that of the nominal plant
   controls.actuator_limits = false;
   controls.log_every = 1;
@@ -54,6 +59,7 @@ int run_optimal(const OptimalArguments& arguments) {
   const Flight flight(arguments.scenario, controls);
   OptimalityOptions options;
   options.control_interval = arguments.control_interval;
+  options.start = arguments.start;
   options.warm_start = arguments.warm_start;
   options.solver.ipopt.max_iterations = arguments.max_iterations;
   options.solver.ipopt.tolerance = arguments.tolerance;
@@ -62,7 +68,8 @@ int run_optimal(const OptimalArguments& arguments) {
   for (const auto& spec : parse_controller_specs(arguments.controllers, arguments.settings))
     controllers.push_back(flight.prepare(spec));
   for (const auto& controller : controllers) {
-    if (controller.spec.label == "optimal") throw Error("thetad optimal: the label 'optimal' names the optimum; label the controller otherwise");
+    if (controller.spec.label.starts_with("optimal"))
+      throw Error("thetad optimal: labels starting 'optimal' name the optima; label the controller otherwise");
   }
   prepare_output_folder(arguments.out);
   const auto comparison_file = arguments.out / "comparison.json", optimality_file = arguments.out / "optimality.json";
@@ -76,54 +83,70 @@ int run_optimal(const OptimalArguments& arguments) {
   OptimalityGap gap = optimality_gap(flight, controllers, options, &progress);
 
   std::vector<RunResult> runs = gap.flights;
-  runs.push_back(gap.optimum);
+  for (const auto& optimum : gap.optima) runs.push_back(optimum.run);
   std::vector<RunFiles> files;
   for (const auto& run : runs) files.push_back(write_run_files(run, arguments.out));
 
-  const OptimalControlSolution& optimum = gap.solution;
-  std::printf("%s, first %g s (ideal; J of every controller sample, docs/optimality.md)\n", flight.scenario().name.c_str(),
-              gap.problem.horizon());
-  std::printf("optimum: Ipopt %s after %d iterations from %s's flight; input held %g s (%d intervals); largest defect %.2g\n",
-              optimum.outcome.status.c_str(), optimum.iterations, gap.warm_start.c_str(), arguments.control_interval,
-              gap.problem.intervals, optimum.constraint_violation);
-  std::printf("%-16s %-22s %16s %12s\n", "label", "status", "J", "gap (%)");
+  const double start = gap.optima.front().problem.start_time(), horizon = gap.optima.front().problem.horizon();
+  std::printf("%s, %g s from t = %g s (ideal; J of every controller sample, docs/optimality.md)\n",
+              flight.scenario().name.c_str(), horizon, start);
+  bool converged = true;
+  nlohmann::ordered_json optima = nlohmann::ordered_json::array();
+  for (std::size_t i = 0; i < gap.optima.size(); ++i) {
+    const SegmentOptimum& optimum = gap.optima[i];
+    const OptimalControlSolution& solution = optimum.solution;
+    converged = converged && solution.outcome.converged;
+    std::printf("%s: Ipopt %s after %d iterations from %s's flight; input held %g s (%d intervals); largest defect %.2g\n",
+                optimum.run.spec.label.c_str(), solution.outcome.status.c_str(), solution.iterations, optimum.from.c_str(),
+                arguments.control_interval, optimum.problem.intervals, solution.constraint_violation);
+    optima.push_back({{"label", optimum.run.spec.label},
+                      {"from", optimum.from},
+                      {"ipopt_status", solution.outcome.status},
+                      {"ipopt_converged", solution.outcome.converged},
+                      {"ipopt_iterations", solution.iterations},
+                      {"max_defect", solution.constraint_violation},
+                      {"optimal_cost", optimum.run.summary.cost},
+                      {"result", files[gap.flights.size() + i].json.filename().string()}});
+  }
+  std::printf("%-16s %-22s %16s %16s %12s\n", "label", "status", "J", "J*", "gap (%)");
   nlohmann::ordered_json gaps = nlohmann::ordered_json::array();
-  for (const auto& flight_run : gap.flights) {
-    const bool completed = flight_run.completed();
-    char percent[32] = "-";
-    if (completed) std::snprintf(percent, sizeof percent, "%.4f", gap.gap_percent(flight_run));
-    std::printf("%-16s %-22s %16.8g %12s\n", flight_run.spec.label.c_str(), status_text(flight_run.summary).c_str(),
-                flight_run.summary.cost, percent);
+  for (std::size_t i = 0; i < gap.flights.size(); ++i) {
+    const RunResult& flight_run = gap.flights[i];
+    const SegmentOptimum* optimum = gap.optimum_for(i);
+    char cost[32] = "-", best[32] = "-", percent[32] = "-";
+    if (optimum != nullptr) {
+      std::snprintf(cost, sizeof cost, "%.8g", gap.costs[i]);
+      std::snprintf(best, sizeof best, "%.8g", optimum->run.summary.cost);
+      std::snprintf(percent, sizeof percent, "%.4f", gap.gap_percent(i));
+    }
+    std::printf("%-16s %-22s %16s %16s %12s\n", flight_run.spec.label.c_str(), status_text(flight_run.summary).c_str(),
+                cost, best, percent);
+    const auto number_or_null = [&](double value) {
+      return optimum != nullptr ? nlohmann::ordered_json(value) : nlohmann::ordered_json(nullptr);
+    };
     gaps.push_back({{"label", flight_run.spec.label},
                     {"controller", flight_run.spec.controller},
                     {"status", status_text(flight_run.summary)},
-                    {"cost", flight_run.summary.cost},
-                    {"gap_percent", completed ? nlohmann::ordered_json(gap.gap_percent(flight_run)) : nullptr}});
+                    {"cost", number_or_null(gap.costs[i])},
+                    {"optimum", optimum != nullptr ? nlohmann::ordered_json(optimum->run.spec.label) : nullptr},
+                    {"optimal_cost", number_or_null(optimum != nullptr ? optimum->run.summary.cost : 0.0)},
+                    {"gap_percent", number_or_null(gap.gap_percent(i))}});
   }
-  const double optimal_cost = gap.optimum.summary.cost;
-  std::printf("%-16s %-22s %16.8g %12s\n", "optimal", optimum.outcome.converged ? "converged" : "not converged",
-              optimal_cost, "0");
 
   write_file_atomically(comparison_file, comparison_json(flight, runs, files).dump(2) + "\n");
-  nlohmann::ordered_json result = {
-      {"format", "thetad-optimality-1"},
-      {"scenario", flight.scenario().name},
-      {"horizon_s", gap.problem.horizon()},
-      {"control_interval_s", arguments.control_interval},
-      {"intervals", gap.problem.intervals},
-      {"warm_start", gap.warm_start},
-      {"ipopt_status", optimum.outcome.status},
-      {"ipopt_converged", optimum.outcome.converged},
-      {"ipopt_iterations", optimum.iterations},
-      {"max_defect", optimum.constraint_violation},
-      {"optimal_cost", optimal_cost},
-      {"optimal_result", files.back().json.filename().string()},
-      {"controllers", gaps},
-      {"provenance", to_json(gap.optimum.provenance)}};
+  nlohmann::ordered_json result = {{"format", "thetad-optimality-2"},
+                                   {"scenario", flight.scenario().name},
+                                   {"start_s", start},
+                                   {"horizon_s", horizon},
+                                   {"control_interval_s", arguments.control_interval},
+                                   {"intervals", gap.optima.front().problem.intervals},
+                                   {"optima", optima},
+                                   {"controllers", gaps},
+                                   {"provenance", to_json(gap.optima.front().run.provenance)}};
   write_file_atomically(optimality_file, result.dump(2) + "\n");
-  std::printf("Wrote %s, %s and the result files of each controller and of the optimum in %s.\n",
-              optimality_file.c_str(), comparison_file.c_str(), arguments.out.c_str());
-  return optimum.outcome.converged ? kExitCompleted : kExitDiverged;
+  std::printf("Wrote %s, %s and the result files of each controller and optimum in %s.\n", optimality_file.c_str(),
+              comparison_file.c_str(), arguments.out.c_str());
+  return converged ? kExitCompleted : kExitDiverged;
 }
 
 }  // namespace thetad::app

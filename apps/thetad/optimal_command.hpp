@@ -10,6 +10,7 @@ namespace thetad::app {
 
 struct OptimalArguments {
   std::string scenario;
+  double start = 0.0;
   double horizon = 0.0;
   double control_interval = 0.05;
   std::vector<std::string> controllers{"theta-d", "sdre", "lqr", "lqr-scheduled"};
@@ -23,12 +24,13 @@ struct OptimalArguments {
 };
 CLI::App* add_optimal_command(CLI::App& app, OptimalArguments& arguments);
 
-// thetad optimal: the controllers flown ideal over the first `horizon` seconds of a scenario, the
-// optimal control problem with their cost solved from the cheapest flight (optimal/optimality_gap),
-// a table of each J and its gap to the optimum on stdout; <out>/<label>.csv and .json per
-// controller and for the optimum (label "optimal"), <out>/comparison.json (so that `thetad plot`
-// draws them together) and <out>/optimality.json (the gaps). Exit code 0 when Ipopt converged, 3
-// when it did not.
+// thetad optimal: the controllers flown ideal over `start` + `horizon` seconds of a scenario, the
+// optimal control problem of the last `horizon` seconds with their cost solved (optimal/optimality_gap):
+// from t = 0 once, from the cheapest flight; from mid-flight once per flight, from its state. A
+// table of each J over the segment, its optimum and the gap on stdout; <out>/<label>.csv and .json
+// per controller and per optimum (label "optimal", or "optimal-from-LABEL"), <out>/comparison.json
+// (so that `thetad plot` draws them together) and <out>/optimality.json (the gaps). Exit code 0
+// when Ipopt converged on every optimum, 3 when it did not.
 int run_optimal(const OptimalArguments& arguments);
 
 }  // namespace thetad::app

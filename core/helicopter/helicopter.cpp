@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "core/helicopter/equations_of_motion.hpp"
 #include "core/helicopter/forces.hpp"
 #include "core/helicopter/paper_weights.hpp"
 #include "core/helicopter/rotor_speed.hpp"
@@ -13,16 +14,23 @@ namespace thetad::heli {
 
 namespace {
 
-void require_size(const char* what, Eigen::Index rows, Eigen::Index cols, Eigen::Index want_rows, Eigen::Index want_cols) {
-  if (rows != want_rows || cols != want_cols) {
-    std::ostringstream message;
-    message << "helicopter: " << what << " is " << rows << "x" << cols << ", expected " << want_rows << "x" << want_cols;
-    throw Error(message.str());
-  }
+[[noreturn]] void throw_size_error(const char* what, Eigen::Index rows, Eigen::Index cols, Eigen::Index want_rows,
+                                   Eigen::Index want_cols) {
+  std::ostringstream message;
+  message << "helicopter: " << what << " is " << rows << "x" << cols << ", expected " << want_rows << "x" << want_cols;
+  throw Error(message.str());
 }
 
-// sin(x)/x, exact to double precision near 0 by its Taylor series (spec §6.5).
-double sinc(double x) { return std::abs(x) < 1e-4 ? 1.0 - x * x / 6.0 : std::sin(x) / x; }
+// Inline, so that the hot path pays two comparisons and no call.
+inline void require_size(const char* what, Eigen::Index rows, Eigen::Index cols, Eigen::Index want_rows,
+                         Eigen::Index want_cols) {
+  if (rows != want_rows || cols != want_cols) [[unlikely]]
+    throw_size_error(what, rows, cols, want_rows, want_cols);
+}
+
+// sin(x)/x from sin_x = sin(x), which the air data already holds; exact to double precision near
+// 0 by its Taylor series (spec §6.5).
+double sinc(double x, double sin_x) { return std::abs(x) < 1e-4 ? 1.0 - x * x / 6.0 : sin_x / x; }
 
 // Omega_mr for the applied thrust at the air data of the state (A4, or the governor of A-11).
 double rotor_speed_at(const Parameters& p, const ModelOptions& options, const AirData& air, double thrust) {
@@ -30,7 +38,7 @@ double rotor_speed_at(const Parameters& p, const ModelOptions& options, const Ai
     if (!std::isfinite(thrust)) throw Error("helicopter: main-rotor thrust T_mr = " + std::to_string(thrust) + " N is not finite");
     return p.omega_nom;
   }
-  return main_rotor_speed(p, thrust, std::hypot(air.u_a, air.v_a), air.w_a, p.omega_nom);
+  return main_rotor_speed(p, thrust, std::sqrt(air.u_a * air.u_a + air.v_a * air.v_a), air.w_a, p.omega_nom);
 }
 
 // The entries of Eqs. (29)-(30) that no state, input or rotor speed changes (spec §6.2, §6.3),
@@ -76,8 +84,8 @@ void fill_varying_sdc(const Parameters& p, const Forces& f, const Eigen::Ref<con
   F(kV, kW) = pr;
   F(kW, kU) = qr;
   F(kW, kV) = -pr;
-  F(kU, kTheta) = -g * sinc(x[kTheta]);             // a4_8
-  F(kV, kPhi) = g * a.cos_theta * sinc(x[kPhi]);    // a5_7
+  F(kU, kTheta) = -g * sinc(x[kTheta], a.sin_theta);           // a4_8
+  F(kV, kPhi) = g * a.cos_theta * sinc(x[kPhi], a.sin_phi);   // a5_7
   F(kU, kS) = f.x_fus / (m * s);                                      // a4_18
   F(kV, kS) = (f.y_fus + f.y_tr + f.y_vf) / (m * s);                  // a5_18
   F(kW, kS) = f.z_fus / (m * s) + g * a.cos_phi * a.cos_theta / s;    // a6_18
@@ -134,37 +142,34 @@ void Helicopter::f(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<
   require_size("state", x.rows(), x.cols(), kStateDim, 1);
   require_size("input", u.rows(), u.cols(), kInputDim, 1);
   require_size("state derivative", xdot.rows(), xdot.cols(), kStateDim, 1);
-  const Parameters& p = parameters_;
   const AirData air = air_data(environment_, x);
-  const double thrust = u[kTmr], pedal = u[kPed], collective = u[kCol], lon = u[kLon], lat = u[kLat];
-  const Forces f = evaluate_forces(p, options_, environment_, air, x, rotor_speed_at(p, options_, air, thrust));
+  const Forces forces = evaluate_forces(parameters_, options_, environment_, air, x,
+                                        rotor_speed_at(parameters_, options_, air, u[kTmr]));
+  equations_of_motion(parameters_, forces, x, u, xdot);
+}
 
-  const double m = p.mass, g = p.gravity;
-  const double uu = x[kU], vv = x[kV], ww = x[kW];
-  const double pr = x[kP], qr = x[kQ], rr = x[kR];
-  const double a1 = x[kA1], b1 = x[kB1];
-
-  xdot.segment<3>(kXp) = air.rotation * x.segment<3>(kU);  // Eq. (1)
-  // Eq. (3): main-rotor force (-T a1, T b1, -T), tail-rotor pedal force m Y_dped delta_ped.
-  xdot[kU] = vv * rr - ww * qr + f.x_fus / m - g * air.sin_theta - a1 * thrust / m;
-  xdot[kV] = ww * pr - uu * rr + (f.y_fus + f.y_tr + f.y_vf) / m + g * air.sin_phi * air.cos_theta +
-             p.y_ped_tr * pedal + b1 * thrust / m;
-  xdot[kW] = uu * qr - vv * pr + f.z_fus / m + g * air.cos_phi * air.cos_theta - thrust / m;
-  // Eq. (5).
-  xdot[kPhi] = pr + (qr * air.sin_phi + rr * air.cos_phi) * air.tan_theta;
-  xdot[kTheta] = qr * air.cos_phi - rr * air.sin_phi;
-  xdot[kPsi] = (qr * air.sin_phi + rr * air.cos_phi) * air.sec_theta;
-  // Eq. (4); the r-equation solved for r_dot with Q_e of B1.
-  const double hub_moment_per_flap = p.k_beta + thrust * p.h_mr;  // L_mr = (.) b1, M_mr = (.) a1
-  xdot[kP] = (qr * rr * (p.iyy - p.izz) + f.l_vf + f.l_tr + p.h_tr * m * p.y_ped_tr * pedal + hub_moment_per_flap * b1) / p.ixx;
-  xdot[kQ] = (pr * rr * (p.izz - p.ixx) + f.m_ht + hub_moment_per_flap * a1) / p.iyy;
-  xdot[kR] = (pr * qr * (p.ixx - p.iyy) + f.n_vf + f.n_tr - f.q_mr - p.gear_tr * f.q_tr - m * p.y_ped_tr * p.l_tr * pedal) /
-             f.yaw_inertia;
-  // Eq. (6), resolved form of §2.5.
-  xdot[kA1] = -qr - a1 / p.tau_e + f.a1_speed + f.a1_per_collective * collective + f.a1_per_lon * lon;
-  xdot[kB1] = -pr - b1 / p.tau_e + f.b1_speed + f.b1_per_collective * collective + f.b1_per_lat * lat;
-  xdot.segment<3>(kXi) = x.segment<3>(kXp);  // Eq. (9)
-  xdot[kS] = -p.k_s * x[kS];                 // Eq. (26)
+bool Helicopter::jacobian(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& u,
+                          Eigen::Ref<Eigen::MatrixXd> dfdx, Eigen::Ref<Eigen::MatrixXd> dfdu) const {
+  require_size("input", u.rows(), u.cols(), kInputDim, 1);
+  require_size("df/dx", dfdx.rows(), dfdx.cols(), kStateDim, kStateDim);
+  require_size("df/du", dfdu.rows(), dfdu.cols(), kStateDim, kInputDim);
+  const double omega = rotor_speed(x, u[kTmr]);  // checks x
+  constexpr int directions = kStateDim + kInputDim;
+  DualState xd;
+  DualInput ud;
+  for (int i = 0; i < kStateDim; ++i) xd[i] = Dual(x[i], directions, i);
+  for (int j = 0; j < kInputDim; ++j) ud[j] = Dual(u[j], directions, kStateDim + j);
+  const BasicAirData<Dual> air = dual_air_data(environment_, xd);
+  const Dual rotor = options_.rotor_speed_model == ModelOptions::RotorSpeedModel::governor
+                         ? Dual(omega)
+                         : implicit_rotor_speed(parameters_, omega, ud[kTmr], air.u_a * air.u_a + air.v_a * air.v_a, air.w_a);
+  DualState xdot;
+  equations_of_motion(parameters_, dual_forces(parameters_, options_, environment_, air, xd, rotor), xd, ud, xdot);
+  for (int i = 0; i < kStateDim; ++i) {
+    dfdx.row(i) = xdot[i].derivatives().head<kStateDim>().transpose();
+    dfdu.row(i) = xdot[i].derivatives().tail<kInputDim>().transpose();
+  }
+  return true;
 }
 
 void Helicopter::sdc(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& u,

@@ -33,6 +33,10 @@ class Helicopter final : public SdcPlant {
   using SdcPlant::sdc;
   void f(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& u,
          Eigen::Ref<Eigen::VectorXd> xdot) const override;
+  // df/dx and df/du by forward automatic differentiation of f's own code (Eigen's AutoDiff), the
+  // rotor speed by the implicit-function theorem: exact to rounding wherever f is smooth.
+  bool jacobian(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& u,
+                Eigen::Ref<Eigen::MatrixXd> dfdx, Eigen::Ref<Eigen::MatrixXd> dfdu) const override;
   void sdc(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& u,
            Eigen::Ref<Eigen::MatrixXd> F, Eigen::Ref<Eigen::MatrixXd> B) const override;
   // sdc() in two parts: the zeros and the 15 entries set by the parameters alone, and the other

@@ -22,11 +22,15 @@ struct ThrustResidual {
     const double y = c * omega - w_a;
     return k * omega * std::sqrt(vh2 + y * y) - thrust;
   }
-  // g' = k (V_h^2 + y^2 + Omega c y)/sqrt(V_h^2 + y^2); NaN at the kink V_h = 0, y = 0.
-  double derivative(double omega) const {
+  // g and g' = k (V_h^2 + y^2 + Omega c y)/sqrt(V_h^2 + y^2) with one square root (a Newton step
+  // needs both); g' is NaN at the kink V_h = 0, y = 0.
+  struct Slope {
+    double value, derivative;
+  };
+  Slope with_derivative(double omega) const {
     const double y = c * omega - w_a;
     const double norm = std::sqrt(vh2 + y * y);
-    return k * (vh2 + y * y + omega * c * y) / norm;
+    return {k * omega * norm - thrust, k * (vh2 + y * y + omega * c * y) / norm};
   }
 };
 
@@ -42,7 +46,7 @@ double root_in_monotonic_interval(const ThrustResidual& g, double lo, double hi,
   constexpr double kRelativeTolerance = 1e-12;
   double omega = start;
   for (int iteration = 0; iteration < 200; ++iteration) {
-    const double value = g(omega);
+    const auto [value, derivative] = g.with_derivative(omega);
     if (value == 0.0) return omega;
     if ((value < 0.0) == (g_lo < 0.0)) {
       lo = omega;
@@ -50,7 +54,7 @@ double root_in_monotonic_interval(const ThrustResidual& g, double lo, double hi,
     } else {
       hi = omega;
     }
-    double next = omega - value / g.derivative(omega);
+    double next = omega - value / derivative;
     if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);  // also catches a NaN step at the kink
     const bool converged = std::abs(next - omega) <= kRelativeTolerance * next || hi - lo <= kRelativeTolerance * lo;
     omega = next;
@@ -108,6 +112,17 @@ double main_rotor_speed(const Parameters& p, double thrust, double horizontal_ai
     throw Error(message.str());
   }
   return best;
+}
+
+Dual implicit_rotor_speed(const Parameters& p, double rotor_speed, const Dual& thrust,
+                          const Dual& horizontal_airspeed_squared, const Dual& w_a) {
+  ThrustResidual g = residual(p, thrust.value(), 0.0, w_a.value());
+  g.vh2 = horizontal_airspeed_squared.value();
+  const double y = g.c * rotor_speed - g.w_a, norm = std::sqrt(g.vh2 + y * y);
+  const double per_airspeed_squared = g.k * rotor_speed / (2.0 * norm), per_w_a = -g.k * rotor_speed * y / norm;
+  return Dual(rotor_speed, (thrust.derivatives() - per_airspeed_squared * horizontal_airspeed_squared.derivatives() -
+                            per_w_a * w_a.derivatives()) /
+                               g.with_derivative(rotor_speed).derivative);
 }
 
 }  // namespace thetad::heli

@@ -1,5 +1,6 @@
 #pragma once
 
+#include "core/helicopter/dual.hpp"
 #include "core/helicopter/parameters.hpp"
 
 namespace thetad::heli {
@@ -21,5 +22,12 @@ double main_rotor_thrust(const Parameters& p, double rotor_speed, double horizon
 // Throws thetad::Error for a negative or non-finite thrust and when no root lies in the bracket
 // (the message names the thrust, the airspeed and the bracket). Allocates nothing on success.
 double main_rotor_speed(const Parameters& p, double thrust, double horizontal_airspeed, double w_a, double hint);
+
+// `rotor_speed`, a root of A4 for thrust.value() (main_rotor_speed), with the derivatives the
+// implicit-function theorem gives it through g(Omega; T, V_h^2, w_a) = 0, not those of the root
+// finder's iteration: dOmega = (dT - dg/dV_h^2 dV_h^2 - dg/dw_a dw_a) / g'(Omega). V_h enters
+// squared, so the derivative exists in hover too.
+Dual implicit_rotor_speed(const Parameters& p, double rotor_speed, const Dual& thrust,
+                          const Dual& horizontal_airspeed_squared, const Dual& w_a);
 
 }  // namespace thetad::heli

@@ -29,26 +29,42 @@ class OptimalCommand : public ::testing::Test {
 TEST_F(OptimalCommand, PrintsEachGapAndWritesTheOptimumBesideTheFlights) {
   const Output output = thetad("optimal --scenario hover-to-hover --horizon 0.2 --controllers lqr,sdre --no-timing --out " + out());
   ASSERT_EQ(output.status, 0) << output.err;
-  EXPECT_THAT(output.out, HasSubstr("hover-to-hover, first 0.2 s"));
+  EXPECT_THAT(output.out, HasSubstr("hover-to-hover, 0.2 s from t = 0 s"));
   // The cheapest flight is the warm start.
+  EXPECT_THAT(output.out, HasSubstr("optimal: Ipopt Solve_Succeeded"));
   EXPECT_THAT(output.out, HasSubstr("from sdre's flight; input held 0.05 s (4 intervals)"));
   const nlohmann::json result = nlohmann::json::parse(thetad::testing::read_text(dir_ / "out" / "optimality.json"));
-  EXPECT_EQ(result["format"], "thetad-optimality-1");
-  EXPECT_TRUE(result["ipopt_converged"].get<bool>());
+  EXPECT_EQ(result["format"], "thetad-optimality-2");
+  ASSERT_EQ(result["optima"].size(), 1u);
+  EXPECT_TRUE(result["optima"][0]["ipopt_converged"].get<bool>());
+  const double optimal_cost = result["optima"][0]["optimal_cost"].get<double>();
   ASSERT_EQ(result["controllers"].size(), 2u);
   for (const auto& controller : result["controllers"]) {
     EXPECT_GE(controller["gap_percent"].get<double>(), 0.0) << controller["label"];
-    EXPECT_NEAR(controller["cost"].get<double>(),
-                result["optimal_cost"].get<double>() * (1.0 + controller["gap_percent"].get<double>() / 100.0),
+    EXPECT_EQ(controller["optimal_cost"].get<double>(), optimal_cost);
+    EXPECT_NEAR(controller["cost"].get<double>(), optimal_cost * (1.0 + controller["gap_percent"].get<double>() / 100.0),
                 1e-9 * controller["cost"].get<double>());
   }
   // The optimum is a run of the comparison, as `thetad plot` reads one.
   const nlohmann::json optimum = nlohmann::json::parse(thetad::testing::read_text(dir_ / "out" / "optimal.json"));
   EXPECT_EQ(optimum["label"], "optimal");
-  EXPECT_EQ(optimum["cost"]["J"], result["optimal_cost"]);
+  EXPECT_EQ(optimum["cost"]["J"].get<double>(), optimal_cost);
   EXPECT_EQ(optimum["log"]["rows"], 200);
   const nlohmann::json comparison = nlohmann::json::parse(thetad::testing::read_text(dir_ / "out" / "comparison.json"));
   EXPECT_EQ(comparison["runs"].size(), 3u);
+}
+
+TEST_F(OptimalCommand, FromMidFlightSolvesFromEachControllersState) {
+  const Output output =
+      thetad("optimal --scenario hover-to-hover --start 0.1 --horizon 0.1 --controllers lqr --no-timing --out " + out());
+  ASSERT_EQ(output.status, 0) << output.err;
+  EXPECT_THAT(output.out, HasSubstr("hover-to-hover, 0.1 s from t = 0.1 s"));
+  EXPECT_THAT(output.out, HasSubstr("optimal-from-lqr: Ipopt Solve_Succeeded"));
+  const nlohmann::json result = nlohmann::json::parse(thetad::testing::read_text(dir_ / "out" / "optimality.json"));
+  EXPECT_EQ(result["start_s"].get<double>(), 0.1);
+  EXPECT_EQ(result["controllers"][0]["optimum"], "optimal-from-lqr");
+  EXPECT_GE(result["controllers"][0]["gap_percent"].get<double>(), 0.0);
+  EXPECT_TRUE(fs::exists(dir_ / "out" / "optimal-from-lqr.csv"));
 }
 
 TEST_F(OptimalCommand, BadArgumentsAreOneClearLine) {
@@ -68,7 +84,7 @@ TEST_F(OptimalCommand, BadArgumentsAreOneClearLine) {
   EXPECT_THAT(output.err, HasSubstr("the warm start sdre is none of the controllers flown"));
   output = thetad("optimal --scenario hover-to-hover --horizon 0.2 --controllers optimal=lqr --out " + out());
   EXPECT_EQ(output.status, 1);
-  EXPECT_THAT(output.err, HasSubstr("the label 'optimal' names the optimum"));
+  EXPECT_THAT(output.err, HasSubstr("labels starting 'optimal' name the optima"));
   EXPECT_FALSE(fs::exists(dir_ / "out" / "optimality.json"));
 }
 

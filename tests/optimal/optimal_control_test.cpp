@@ -6,8 +6,11 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <random>
+
 #include "core/sim/plant_simulator.hpp"
 #include "optimal/shooting_interval.hpp"
+#include "tests/optimal/interval_differences.hpp"
 #include "tests/error_message.hpp"
 #include "tests/test_plants.hpp"
 
@@ -114,12 +117,33 @@ TEST(OptimalControl, IntervalDerivativesAreTheDiscreteMapOnALinearPlant) {
   const LinearPlant plant = small_plant();
   const OptimalControlProblem problem = problem_for(plant);
   ShootingInterval interval(problem);
+  Eigen::VectorXd next(3);
   Eigen::MatrixXd derivative;
-  interval.jacobian(4, problem.initial_state, Eigen::Vector2d(0.7, -0.2), derivative);
+  interval.linearize(4, problem.initial_state, Eigen::Vector2d(0.7, -0.2), next, derivative);
   const Discrete exact =
       repeat(rk4_step(plant.A(), plant.B(), problem.dt), problem.controller_period_steps * problem.interval_periods);
-  EXPECT_LE((derivative.topLeftCorner(3, 3) - exact.Phi).cwiseAbs().maxCoeff(), 1e-10);
-  EXPECT_LE((derivative.topRightCorner(3, 2) - exact.Gamma).cwiseAbs().maxCoeff(), 1e-10);
+  EXPECT_LE((derivative.topLeftCorner(3, 3) - exact.Phi).cwiseAbs().maxCoeff(), 1e-14);
+  EXPECT_LE((derivative.topRightCorner(3, 2) - exact.Gamma).cwiseAbs().maxCoeff(), 1e-14);
+}
+
+// The whole block, the cost row too, against central differences of the interval map at random
+// nodes and inputs (the map is at most quadratic: the differences are exact but for rounding).
+TEST(OptimalControl, IntervalDerivativesAreCentralDifferencesOnALinearPlant) {
+  const LinearPlant plant = small_plant();
+  const OptimalControlProblem problem = problem_for(plant);
+  ShootingInterval interval(problem);
+  std::mt19937_64 rng(11);
+  std::normal_distribution<double> normal;
+  for (int trial = 0; trial < 20; ++trial) {
+    const Eigen::VectorXd z = Eigen::VectorXd::NullaryExpr(5, [&] { return normal(rng); });
+    const int k = trial % problem.intervals;
+    Eigen::VectorXd next(3), reached(3);
+    Eigen::MatrixXd derivative;
+    const double cost = interval.linearize(k, z.head(3), z.tail(2), next, derivative);
+    EXPECT_EQ(cost, interval.propagate(k, z.head(3), z.tail(2), reached));
+    EXPECT_EQ(next, reached);
+    EXPECT_LT(testing::row_relative_error(derivative, testing::interval_differences(interval, k, z, 3)), 1e-9);
+  }
 }
 
 // The objective is J as the plant simulator prices a flight, sample for sample.
