@@ -86,8 +86,10 @@ TEST(CareSolver, RefusesWhatSolveCareRefuses) {
   const MatrixXd B = Eigen::Vector2d(1, 0);
   const MatrixXd Q = MatrixXd::Identity(2, 2);
   const MatrixXd R = testing::scalar(1);
-  for (const auto& [method, method_name] : kMethods) {
-    SCOPED_TRACE(method_name);
+  for (const auto& entry : kMethods) {
+    // Not a structured binding: Clang 14 cannot capture one in a lambda.
+    const auto method = entry.first;
+    SCOPED_TRACE(entry.second);
     const std::string expected = testing::error_message([&] { solve_care(A, B, Q, R, method); });
     CareSolver solver(Q, R, method);
     EXPECT_THAT(expected, ::testing::HasSubstr("not stabilizable"));
