@@ -121,7 +121,7 @@ TEST_F(RunOutputs, ALabelledCompareFliesOneControllerTwiceUnderItsLabels) {
   EXPECT_EQ(comparison["runs"][1]["label"], "tuned");
   EXPECT_EQ(comparison["runs"][1]["controller"], "theta-d");
   const thetad::StoredRun tuned = thetad::read_run_files(dir_ / "out" / "tuned.json");
-  EXPECT_EQ(tuned.result["controller_settings"]["k"], nlohmann::json::array({0.5, 0.25}));
+  EXPECT_EQ(tuned.result["controller_settings"]["k"], nlohmann::ordered_json::array({0.5, 0.25}));
   EXPECT_EQ(tuned.result["settings_source"], path("tuned.yaml"));
   EXPECT_NE(tuned.result["cost"]["J"], thetad::read_run_files(dir_ / "out" / "paper.json").result["cost"]["J"]);
 
