@@ -35,6 +35,7 @@
 #include "core/sim/recording_law.hpp"
 #include "core/sim/simulator.hpp"
 #include "scenarios/scenario.hpp"
+#include "tests/controllers/every_pass_settings.hpp"
 
 namespace {
 
@@ -115,23 +116,9 @@ void registered_step(benchmark::State& state, const std::string& name) {
   time_steps(state, *controller);
 }
 
-// θ–D and SDRE built directly (the registry's SDRE block has no fixed-point tolerance), with
-// what they share: the paper's weights, u0 = hover thrust (spec §7.1, §7.6), every pass run.
-template <class Settings>
-Settings series_settings(const heli::Helicopter& model, int passes) {
-  Settings s;
-  const thetad::DesignDefaults defaults = model.design_defaults();
-  s.Q = defaults.state_weights.asDiagonal();
-  s.R = defaults.input_weights.asDiagonal();
-  s.initial_input = defaults.input;
-  s.fixed_point_iterations = passes;
-  s.fixed_point_tolerance = 0.0;
-  return s;
-}
-
 void theta_d_step(benchmark::State& state, int terms, int passes, bool fixed_size) {
   const Recording& r = recording();
-  auto s = series_settings<thetad::ThetaDSettings>(r.model, passes);
+  auto s = thetad::testing::every_pass_settings<thetad::ThetaDSettings>(r.model, passes);
   s.terms = terms;
   s.fixed_size = fixed_size;
   thetad::ThetaDController controller(r.model, s);
@@ -158,7 +145,7 @@ void sdc_evaluation(benchmark::State& state, bool varying_only) {
 
 void sdre_step(benchmark::State& state, thetad::SdreSettings::Mode mode, int passes) {
   const Recording& r = recording();
-  auto s = series_settings<thetad::SdreSettings>(r.model, passes);
+  auto s = thetad::testing::every_pass_settings<thetad::SdreSettings>(r.model, passes);
   s.mode = mode;
   thetad::SdreController controller(r.model, s);
   time_steps(state, controller);

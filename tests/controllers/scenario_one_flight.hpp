@@ -12,7 +12,6 @@
 #include <yaml-cpp/yaml.h>
 
 #include "controllers/registry.hpp"
-#include "controllers/theta_d.hpp"
 #include "core/error.hpp"
 #include "core/helicopter/helicopter.hpp"
 #include "core/sim/recording_law.hpp"
@@ -43,19 +42,6 @@ struct ScenarioOneFlight {
     return ControllerRegistry::instance().make(name, settings, ControllerContext{model, scenario.initial_state, 0.0});
   }
 };
-
-// θ–D with the model's design defaults (the paper's weights, u0 = hover thrust) and every one of
-// `passes` fixed-point passes run (tolerance 0), for the tests that replay these states.
-inline ThetaDSettings theta_d_every_pass(const SdcPlant& model, int passes) {
-  const DesignDefaults defaults = model.design_defaults();
-  ThetaDSettings s;
-  s.Q = defaults.state_weights.asDiagonal();
-  s.R = defaults.input_weights.asDiagonal();
-  s.initial_input = defaults.input;
-  s.fixed_point_iterations = passes;
-  s.fixed_point_tolerance = 0.0;
-  return s;
-}
 
 // 0.2 … 1.2 s, recorded once per test program.
 inline const ScenarioOneFlight& scenario_one_flight() {

@@ -12,6 +12,7 @@
 
 #include "controllers/theta_d.hpp"
 #include "core/helicopter/helicopter.hpp"
+#include "tests/controllers/every_pass_settings.hpp"
 #include "tests/controllers/scenario_one_flight.hpp"
 
 namespace thetad {
@@ -34,7 +35,7 @@ TEST(ThetaDFixedSize, SameControlAsTheDynamicSizePathOnScenarioOneStates) {
   // with the one-step lag and with the 3-pass fixed point (every pass run).
   const auto& flight = testing::scenario_one_flight();
   for (const int passes : {1, 3}) {
-    ThetaDSettings s = testing::theta_d_every_pass(flight.model, passes);
+    ThetaDSettings s = testing::every_pass_settings<ThetaDSettings>(flight.model, passes);
     ThetaDController fixed_size(flight.model, s);
     s.fixed_size = false;
     ThetaDController dynamic_size(flight.model, s);
@@ -65,7 +66,7 @@ VectorXd reference_law(ThetaDController& controller, const SdcPlant& model, cons
 TEST(ThetaDReference, ControlEqualsTheWrittenOutSeriesOnScenarioOneStates) {
   const auto& flight = testing::scenario_one_flight();
   for (const int passes : {1, 3}) {
-    ThetaDController controller(flight.model, testing::theta_d_every_pass(flight.model, passes));
+    ThetaDController controller(flight.model, testing::every_pass_settings<ThetaDSettings>(flight.model, passes));
     controller.reset(flight.scenario.initial_state, 0.0);
     VectorXd u(heli::kInputDim), v(heli::kStateDim), previous = controller.settings().initial_input;
     double worst = 0.0;
