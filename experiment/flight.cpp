@@ -52,15 +52,17 @@ std::string Flight::disturbances() const {
                    noise.actuator && noise.wind_component && noise.induced_velocity;
   const bool none = !settings_.parameter_uncertainty && !settings_.wind_gust.enabled && !noise.measurement &&
                     !noise.actuator && !noise.wind_component && !noise.induced_velocity;
-  if (all) return "all disturbances (the paper's setting)";
-  if (none) return "ideal (no uncertainty, noise or wind)";
+  const char* limits = settings_.actuator_limits.enabled ? "; actuator limits on" : "; no actuator limits";
+  if (all) return std::string("all disturbances (the paper's)") + limits;
+  if (none && !settings_.actuator_limits.enabled) return "ideal (no uncertainty, noise, wind or actuator limits)";
+  if (none) return std::string("no uncertainty, noise or wind") + limits;
   char text[256];
   std::snprintf(text, sizeof text,
                 "uncertainty %s, wind gust %s, measurement noise %s, actuator noise %s, wind noise %s, "
                 "induced-velocity noise %s",
                 on(settings_.parameter_uncertainty), on(settings_.wind_gust.enabled), on(noise.measurement),
                 on(noise.actuator), on(noise.wind_component), on(noise.induced_velocity));
-  return text;
+  return text + std::string(limits);
 }
 
 void Flight::set_keep_log(bool keep) {

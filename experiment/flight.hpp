@@ -46,7 +46,8 @@ class Flight {
   const heli::Helicopter& model() const { return model_; }
   // What produced a run of this flight, less the controller (and the host and time, stamped per run).
   const Provenance& provenance() const { return provenance_; }
-  // "all disturbances (the paper's setting)", "ideal (...)", or the switches that differ.
+  // "ideal (...)" with neither disturbances nor actuator limits; else "all disturbances (the
+  // paper's)", "no uncertainty, noise or wind" or the switches, then whether the limits are on.
   std::string disturbances() const;
 
   // Flies the next runs with `seed` (a campaign's draws reuse one Flight and its controllers).

@@ -48,6 +48,7 @@ void apply(const RunControls& controls, sim::SimulationSettings& settings) {
     settings.parameter_uncertainty = ideal.parameter_uncertainty;
     settings.wind_gust.enabled = ideal.wind_gust.enabled;
     settings.noise = ideal.noise;
+    settings.actuator_limits.enabled = ideal.actuator_limits.enabled;
   }
   const auto set = [](const std::optional<bool>& given, bool& value) {
     if (given) value = *given;

@@ -16,7 +16,9 @@ namespace thetad {
 
 // What to fly (docs/scenarios.md describes the file format): a commanded trajectory made of
 // phases, the initial state, and the simulation settings the scenario needs. Everything not set
-// by the file keeps the paper's setting (sim::SimulationSettings::paper(), resolved model preset).
+// by the file keeps thetad's defaults: the paper's disturbances, the X-Cell's actuator limits
+// (sim::SimulationSettings{}), the resolved model preset. The paper-literal preset flies without
+// actuator limits unless the file asks for them.
 struct Scenario {
   std::string name;
   std::string description;
@@ -54,7 +56,7 @@ struct Scenario {
   Scenario at_speed(double speed_scale) const;
 
   // `base` with this scenario's duration and overrides applied.
-  sim::SimulationSettings simulation_settings(sim::SimulationSettings base = sim::SimulationSettings::paper()) const;
+  sim::SimulationSettings simulation_settings(sim::SimulationSettings base = {}) const;
 };
 
 // Reads a scenario file. Every problem throws thetad::Error with one line that names the file,

@@ -112,7 +112,7 @@ void add_flight_options(CLI::App& command, FlightOptions& options, bool scenario
   command.add_option_function<std::string>(
       "--seed", [&options](const std::string& text) { options.controls.seed = parse_seed(text); },
       "Seed of the run's random numbers (default: the scenario's, else 1)");
-  command.add_flag("--ideal", options.controls.ideal, "No parameter uncertainty, noise or wind");
+  command.add_flag("--ideal", options.controls.ideal, "No parameter uncertainty, noise, wind or actuator limits");
   command
       .add_option_function<std::string>(
           "--actuator-limits", [&options](const std::string& text) { options.controls.actuator_limits = text == "on"; },

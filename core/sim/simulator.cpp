@@ -225,6 +225,12 @@ void SimulationSettings::validate() const {
   check_run_memory(8.0 * static_cast<double>(rows * columns + (measure_compute_time ? samples : 0)), rows);
 }
 
+SimulationSettings SimulationSettings::paper() {
+  SimulationSettings settings;
+  settings.actuator_limits.enabled = false;
+  return settings;
+}
+
 SimulationSettings SimulationSettings::ideal() {
   SimulationSettings settings;
   settings.parameter_uncertainty = false;
@@ -233,6 +239,7 @@ SimulationSettings SimulationSettings::ideal() {
   settings.noise.actuator = false;
   settings.noise.wind_component = false;
   settings.noise.induced_velocity = false;
+  settings.actuator_limits.enabled = false;
   return settings;
 }
 

@@ -39,9 +39,9 @@ struct SimulationSettings {
   WindGustSettings wind_gust;
   NoiseSettings noise;
   DivergenceLimits limits;
-  // Servo magnitude and rate limits on the applied input: the X-Cell's, off by default (the paper
-  // has none, and θ–D with the paper's weights does not survive them: docs/model.md §12).
-  ActuatorLimits actuator_limits = ActuatorLimits::off();
+  // Servo magnitude and rate limits on the applied input: the X-Cell's (docs/model.md §12), on
+  // unless turned off; the paper's setting has none.
+  ActuatorLimits actuator_limits = ActuatorLimits::x_cell();
   // Off makes the compute_ns column and the timing statistics 0, so that two runs with the same
   // seed give byte-identical files (the only non-deterministic quantity of a run is its timing).
   bool measure_compute_time = true;
@@ -58,9 +58,10 @@ struct SimulationSettings {
   // flight logged at every 1 kHz sample (60 columns). Beyond it simulate() refuses up front.
   static constexpr double kMaxRunMemory = 2.0 * (1 << 30);
 
-  // Every disturbance on: the paper's setting (spec §8.1); no actuator limits.
-  static SimulationSettings paper() { return {}; }
-  // Every disturbance off: nominal plant, no wind, no noise.
+  // Every disturbance on and no actuator limits: the paper's setting (spec §8.1).
+  static SimulationSettings paper();
+  // Every disturbance off and no actuator limits: the nominal plant with ideal servos, no wind, no
+  // noise.
   static SimulationSettings ideal();
 };
 

@@ -59,6 +59,15 @@ def test_summary_only_keeps_no_log():
     assert "compute_ns" in result.columns  # with timing, as the CSV would have
 
 
+def test_actuator_limits_are_on_unless_turned_off():
+    def limits(**controls):
+        result = thetad.run("hover-to-hover", "lqr", duration=0.1, summary_only=True, timing=False, **controls)
+        return result.summary["settings"]["actuator_limits"]["enabled"]
+
+    assert limits() and not limits(actuator_limits=False) and not limits(ideal=True)
+    assert limits(ideal=True, actuator_limits=True)
+
+
 def test_a_registered_controller_object_flies_as_its_spec():
     tuned = thetad.controller("tuned=theta-d", k=[0.5, 2.0], l=[0.1, 0.2])
     result = thetad.run("hover-step", tuned, duration=0.2, summary_only=True, timing=False)

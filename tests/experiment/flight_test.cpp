@@ -59,6 +59,30 @@ TEST(Flight, RunControlsOverrideTheScenario) {
   EXPECT_EQ(run.log.rows(), 50);
 }
 
+// The X-Cell's servos fly every run unless the scenario, `ideal` or the switch says otherwise
+// (the paper's two scenarios say off); the summary line says which.
+TEST(Flight, ActuatorLimitsAreOnByDefaultAndIdealOrTheSwitchTurnsThemOff) {
+  const std::string scenario = THETAD_SOURCE_DIR "/scenarios/hover-to-hover.yaml";
+  const Flight by_default(scenario, seconds(0.1));
+  EXPECT_TRUE(by_default.settings().actuator_limits.enabled);
+  EXPECT_EQ(by_default.disturbances(), "all disturbances (the paper's); actuator limits on");
+  EXPECT_FALSE(Flight(kScenario, seconds(0.1)).settings().actuator_limits.enabled);
+
+  RunControls ideal = seconds(0.1);
+  ideal.ideal = true;
+  EXPECT_FALSE(Flight(scenario, ideal).settings().actuator_limits.enabled);
+  EXPECT_EQ(Flight(scenario, ideal).disturbances(), "ideal (no uncertainty, noise, wind or actuator limits)");
+  ideal.actuator_limits = true;
+  EXPECT_TRUE(Flight(scenario, ideal).settings().actuator_limits.enabled);
+  EXPECT_EQ(Flight(scenario, ideal).disturbances(), "no uncertainty, noise or wind; actuator limits on");
+
+  RunControls off = seconds(0.1);
+  off.actuator_limits = false;
+  const Flight unlimited(scenario, off);
+  EXPECT_FALSE(unlimited.settings().actuator_limits.enabled);
+  EXPECT_EQ(unlimited.disturbances(), "all disturbances (the paper's); no actuator limits");
+}
+
 TEST(Flight, DisturbanceScalesAndTheInitialOffsetOverrideTheScenario) {
   RunControls controls = seconds(0.2);
   controls.uncertainty_scale = 2.0;

@@ -116,7 +116,7 @@ TEST(Scenario, SimulationOverridesApply) {
   EXPECT_EQ(scenario.model_preset, "paper");
 }
 
-TEST(Scenario, ActuatorLimitsAreOffUnlessTheFileSaysAndTheyNeverFlyThePaperPresetUnasked) {
+TEST(Scenario, ActuatorLimitsAreOnUnlessTurnedOffAndNeverFlyThePaperPresetUnasked) {
   const auto limits_on = [](const std::string& simulation, bool base_on) {
     sim::SimulationSettings base;
     base.actuator_limits.enabled = base_on;
@@ -124,7 +124,16 @@ TEST(Scenario, ActuatorLimitsAreOffUnlessTheFileSaysAndTheyNeverFlyThePaperPrese
         .simulation_settings(base)
         .actuator_limits.enabled;
   };
+  const auto limits_by_default = [](const std::string& simulation) {
+    return parse_scenario(kHeader + kTakeoff + kHover + simulation, "test.yaml").simulation_settings().actuator_limits;
+  };
+  EXPECT_TRUE(sim::SimulationSettings{}.actuator_limits.enabled);
   EXPECT_FALSE(sim::SimulationSettings::paper().actuator_limits.enabled);
+  EXPECT_FALSE(sim::SimulationSettings::ideal().actuator_limits.enabled);
+  EXPECT_TRUE(limits_by_default("").enabled);
+  EXPECT_EQ(limits_by_default("").upper, sim::ActuatorLimits::x_cell().upper);
+  EXPECT_FALSE(limits_by_default("simulation:\n  actuator_limits: off\n").enabled);
+  EXPECT_FALSE(limits_by_default("simulation:\n  model:\n    preset: paper\n").enabled);
   EXPECT_FALSE(limits_on("", false));
   EXPECT_TRUE(limits_on("simulation:\n  actuator_limits: on\n", false));
   EXPECT_TRUE(limits_on("", true));
