@@ -207,7 +207,7 @@ SegmentOptimum solve_segment(const Flight& flight, const OptimalControlProblem& 
   optimum.problem = first == 0 ? segment : from_flight(segment, log);
   OptimalControlSettings solver = options.solver;
   if (progress) {
-    progress->start(label + " (Ipopt from " + optimum.from + "):", solver.ipopt.max_iterations);
+    progress->start(label + " (Ipopt from " + optimum.from + "):", solver.ipopt.max_iterations, "Ipopt iterations at most");
     solver.progress = [progress, outer = options.solver.progress](int iteration, double objective, double defect) {
       progress->update(iteration);
       if (outer) outer(iteration, objective, defect);
