@@ -14,7 +14,8 @@ struct CareResult {
   // the sum can be far larger than Q, and so is this number even for a backward-stable solve.
   double relative_residual;
   // Newton steps taken. solve_care: Newton refinement steps after the direct solution, 0 unless
-  // that solution was not backward stable (see riccati.cpp); Newton–Kleinman: its steps.
+  // that solution was not backward stable (see riccati.cpp); Newton–Kleinman: its Lyapunov solves,
+  // Newton and chord steps alike, an undone chord step and the steps before a restart included.
   int iterations;
   // Inversions of the sign-function iteration that produced P; 0 when P came from the Schur
   // form or from Newton–Kleinman.

@@ -91,7 +91,9 @@ bool NewtonKleinmanSolver::iterate(const MatrixRef& A, const MatrixRef& P0, bool
   double step = std::numeric_limits<double>::infinity();
   double previous_step = std::numeric_limits<double>::infinity();
   bool last_was_newton = false;
-  int accepted = 0;  // steps that moved P; `steps` counts an undone chord step too
+  bool retake = false;  // the last chord step was undone: take it again as a Newton step
+  int accepted = 0;     // steps that moved P; `steps` counts an undone chord step too
+  const int first_step = steps;
   for (;;) {
     const double rho = current_.rho;
     if (!std::isfinite(rho) && chord_taken) return false;
@@ -100,7 +102,7 @@ bool NewtonKleinmanSolver::iterate(const MatrixRef& A, const MatrixRef& P0, bool
     // Newton step measures them. Then stop on the returned P's own ρ once the step is within the
     // tolerance or, after a Newton step, has stopped shrinking, i.e. reached the rounding level of
     // this equation. A chord step that stops shrinking says only that its Schur form is too old.
-    if (accepted > 0) {
+    if (accepted > 0 && !retake) {
       const bool small = step <= tolerance_ * std::max(1.0, current_.P.norm());
       const bool stagnant = step > 0.5 * previous_step;
       if (rho <= tolerance_ && (small || (stagnant && last_was_newton))) break;
@@ -114,9 +116,10 @@ bool NewtonKleinmanSolver::iterate(const MatrixRef& A, const MatrixRef& P0, bool
       // no ratio yet.
       newton_next = !chord || !(step <= kChordContraction * previous_step) || (last_was_newton && accepted == 1);
     }
-    if (steps == max_iterations_ && chord_taken) return false;
-    if (steps == max_iterations_)
-      fail("Newton–Kleinman did not converge in " + std::to_string(steps) + " iterations (residual ρ " + num(rho) +
+    const int taken = steps - first_step;
+    if (taken == max_iterations_ && chord_taken) return false;
+    if (taken == max_iterations_)
+      fail("Newton–Kleinman did not converge in " + std::to_string(taken) + " iterations (residual ρ " + num(rho) +
            ", last relative step " + num(step / std::max(1.0, current_.P.norm())) + ", tolerance " +
            num(tolerance_) + ")");
     if (newton_next) {
@@ -146,8 +149,10 @@ bool NewtonKleinmanSolver::iterate(const MatrixRef& A, const MatrixRef& P0, bool
     evaluate(A, next_);
     if (!newton_next && !(next_.rho <= tolerance_ || next_.rho < rho)) {
       newton_next = true;  // undone: the held Schur form is too far from this closed loop
+      retake = true;
       continue;
     }
+    retake = false;
     chord_taken = chord_taken || !newton_next;
     last_was_newton = newton_next;
     newton_next = false;

@@ -75,8 +75,9 @@ class NewtonKleinmanSolver {
   // Schur form of A − G·P of `it` into lyapunov_.
   void factor_closed_loop(const Eigen::Ref<const Eigen::MatrixXd>& A, const Iterate& it);
   // The iteration from P0 to current_ and the Schur form of its closed loop, chord steps allowed
-  // from the start when `chord` (a Schur form is held); adds its steps to `steps`. False, after a
-  // chord step, on any failure but a Lyapunov solve's; throws otherwise.
+  // from the start when `chord` (a Schur form is held); adds its steps to `steps`, and has
+  // max_iterations_ of its own. False, after a chord step, on any failure but a Lyapunov solve's;
+  // throws otherwise.
   bool iterate(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::MatrixXd>& P0, bool chord,
                int& steps);
 

@@ -51,8 +51,7 @@ CLI::App* add_optimal_command(CLI::App& app, OptimalArguments& arguments) {
 int run_optimal(const OptimalArguments& arguments) {
   RunControls controls;
   controls.duration = arguments.start + arguments.horizon;
-  controls.ideal = true;  // the optimum is that of the nominal plant
-  controls.actuator_limits = false;
+  controls.ideal = true;  // the optimum is that of the nominal plant with ideal servos
   controls.log_every = 1;
   controls.summary_only = false;
   if (arguments.no_timing) controls.timing = false;

@@ -116,7 +116,7 @@ void add_flight_options(CLI::App& command, FlightOptions& options, bool scenario
   command
       .add_option_function<std::string>(
           "--actuator-limits", [&options](const std::string& text) { options.controls.actuator_limits = text == "on"; },
-          "Servo magnitude and rate limits on the applied input: on|off (default: the scenario's, else off; "
+          "Servo magnitude and rate limits on the applied input: on|off (default: the scenario's, else on; "
           "docs/model.md §12)")
       ->check(CLI::IsMember({"on", "off"}));
   command.add_option_function<double>(

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cstddef>
-#include <iostream>
 #include <string>
 
 #include <Eigen/Dense>
@@ -74,8 +73,10 @@ TEST(NewtonKleinmanOnAFlight, OneSolverAlongTheFlightReusesItsSchurFormsAndStays
   }
   EXPECT_LE(worst, 1e-9);
   EXPECT_LT(schur_forms, steps);
-  std::cout << calls << " calls: " << steps << " steps, " << schur_forms
-            << " Schur forms, largest distance to the direct P " << worst << "\n";
+  RecordProperty("calls", static_cast<int>(calls));
+  RecordProperty("steps", steps);
+  RecordProperty("schur_forms", schur_forms);
+  RecordProperty("largest_distance_to_the_direct_P", std::to_string(worst));
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include "controllers/sdre.hpp"
 #include "core/error.hpp"
 #include "core/helicopter/paper_weights.hpp"
+#include "tests/controllers/every_pass_settings.hpp"
 #include "tests/controllers/hover_recovery.hpp"
 #include "tests/controllers/scalar_plant.hpp"
 #include "tests/core/care_checks.hpp"
@@ -30,12 +31,8 @@ double control_at(SdreController& sdre, double t, double x) {
 }
 
 SdreSettings paper_settings(const heli::Helicopter& model, SdreSettings::Mode mode) {
-  SdreSettings settings;
+  SdreSettings settings = testing::design_settings<SdreSettings>(model);
   settings.mode = mode;
-  const DesignDefaults defaults = model.design_defaults();
-  settings.Q = defaults.state_weights.asDiagonal();
-  settings.R = defaults.input_weights.asDiagonal();
-  settings.initial_input = defaults.input;
   return settings;
 }
 

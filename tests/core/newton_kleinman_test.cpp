@@ -214,6 +214,26 @@ TEST(NewtonKleinman, OneSolverServesManyEquationsWithTheSameWeights) {
   }
 }
 
+// With a Schur form held from an earlier solve, a warm start far away (every entry of A moved by
+// up to ~20 %) begins with chord steps; one that raises the residual is undone and taken again as
+// a Newton step. It was taken again as the same chord step until the iteration budget ran out, and
+// the restart from P0 had no budget left: this sequence threw "did not converge in 50 iterations".
+TEST(NewtonKleinman, AnUndoneChordStepIsTakenAgainAsANewtonStep) {
+  const CareProblem p = bench::paper_care_problem();
+  NewtonKleinmanSolver solver(p.Q, p.R);
+  MatrixXd P = solve_care(p.A, p.B, p.Q, p.R).P;
+  solver.solve(p.A, p.B, P);
+  std::mt19937_64 rng(1);
+  for (int k = 0; k < 2; ++k) {
+    CareProblem next = p;
+    next.A += 0.2 * p.A.cwiseProduct(bench::random_normal(p.A.rows(), p.A.cols(), rng));
+    const CareResult& result = solver.solve(next.A, next.B, P);
+    expect_honest(next, result, solver.tolerance());
+    EXPECT_LE(result.iterations, 20);
+    P = result.P;
+  }
+}
+
 TEST(NewtonKleinman, Errors) {
   MatrixXd A(2, 2);
   A << 1, 1, 0, 2;
