@@ -153,6 +153,9 @@ TEST(CampaignFile, TheShippedCampaignsAreValid) {
     EXPECT_EQ(swept, envelope.cells[i]) << i;
   }
   EXPECT_EQ(load_campaign(folder / "scenario-1-paired-sdre.yaml").controllers.size(), 3u);
+  const Campaign wide = load_campaign(folder / "envelope-wide.yaml");
+  EXPECT_EQ(wide.run_count(), 4 * 5 * 4 * 2);
+  EXPECT_EQ(wide.base_seed, envelope.base_seed);
 }
 
 }  // namespace
