@@ -70,10 +70,13 @@ void CampaignWorker::prepare_all() {
 std::string CampaignWorker::provenance() {
   nlohmann::ordered_json scenarios = nlohmann::ordered_json::array();
   for (int scenario = 0; scenario < static_cast<int>(campaign_.scenarios.size()); ++scenario) {
-    nlohmann::ordered_json j = to_json(flight(0, scenario).provenance());
     // What differs from run to run is in the runs table, not here.
-    for (const char* per_run : {"seed", "initial_offset_m", "initial_attitude_offset_rad", "trajectory_speed_scale"})
-      j.erase(per_run);
+    Provenance shared = flight(0, scenario).provenance();
+    shared.initial_offset.reset();
+    shared.initial_attitude_offset.reset();
+    shared.speed_scale.reset();
+    nlohmann::ordered_json j = to_json(shared);
+    j.erase("seed");
     scenarios.push_back(std::move(j));
   }
   return scenarios.dump();

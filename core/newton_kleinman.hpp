@@ -35,7 +35,8 @@ namespace thetad {
 // that does not lower ρ is undone and the step retaken with a Schur form of the current closed
 // loop (a Newton step); so is every step after one that did not shrink the step twentyfold. When
 // the iteration fails after chord steps (a P that does not stabilize, a stall, too many steps), the
-// call starts again from P0 with Newton steps only. The stopping rule above is the same for both kinds of step; only a Newton step can stall.
+// call starts again from P0 with Newton steps only. The stopping rule above is the same for both
+// kinds of step; only a Newton step can stall.
 class NewtonKleinmanSolver {
  public:
   // Q n×n symmetric positive semi-definite, R m×m symmetric positive definite (checked, as by
