@@ -38,7 +38,10 @@ SdreController::SdreController(const SdcPlant& model, SdreSettings settings)
     throw Error("sdre: R must be symmetric positive definite");
   }
   R_inverse_ = llt.solve(Eigen::MatrixXd::Identity(m, m));
-  newton_.emplace(settings_.Q, settings_.R, settings_.newton_tolerance, settings_.newton_max_iterations);
+  // The warm step needs P, not the closed-loop eigenvalues: the Lyapunov certificate spares it
+  // a Schur form whenever it holds.
+  newton_.emplace(settings_.Q, settings_.R, settings_.newton_tolerance, settings_.newton_max_iterations,
+                  StabilityProof::lyapunov);
   cold_.emplace(settings_.Q, settings_.R);
 
   F_.setZero(n, n);

@@ -29,7 +29,8 @@ namespace thetad {
 struct SdreSettings {
   enum class Mode {
     cold,  // CareSolver (matrix sign function, Laub–Schur fallback) at every pass
-    warm,  // Newton–Kleinman from the last P (NewtonKleinmanSolver), the cold solve when that fails
+    warm,  // Newton–Kleinman from the last P (NewtonKleinmanSolver, its stability proved by the
+           // Lyapunov certificate when that holds), the cold solve when that fails
   };
   Mode mode = Mode::warm;
   // Q n×n symmetric positive semi-definite, R m×m symmetric positive definite (Eq. 37).

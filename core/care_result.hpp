@@ -9,7 +9,9 @@ namespace thetad {
 struct CareResult {
   Eigen::MatrixXd P;                         // stabilizing solution, exactly symmetric
   Eigen::MatrixXd K;                         // R⁻¹ B' P: the optimal feedback is u = −K x
-  Eigen::VectorXcd closed_loop_eigenvalues;  // eig(A − B K)
+  // eig(A − B K); NaN when a NewtonKleinmanSolver asked for StabilityProof::lyapunov proved the
+  // closed loop stable without them.
+  Eigen::VectorXcd closed_loop_eigenvalues;
   // ‖A'P + PA − PBR⁻¹B'P + Q‖_F / max(1, ‖Q‖_F). On ill-conditioned equations the terms of
   // the sum can be far larger than Q, and so is this number even for a backward-stable solve.
   double relative_residual;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <limits>
 #include <string>
 #include <utility>
@@ -34,16 +35,18 @@ void symmetrize(MatrixXd& P) {
 // Not solve_care's normwise η (‖A‖‖P‖ and ‖G‖‖P‖² in place of the terms): on the paper's
 // problem P is large where G is small, ‖G‖‖P‖² overstates ‖PGP‖ by ten orders of magnitude and η
 // is 1e-25 for a P off by 1e-3 (measured), while ρ of the rounded exact solution is ~1e-16.
+// A zero residual is ρ = 0 even when every term is zero too (Q = 0 and P = 0, the solution of a
+// stable plant that Q does not weigh), not 0/0.
 double relative_to_terms(double residual_norm, double q_norm, double AtP_norm, double PGP_norm) {
-  return residual_norm / (q_norm + 2.0 * AtP_norm + PGP_norm);
+  return residual_norm == 0.0 ? 0.0 : residual_norm / (q_norm + 2.0 * AtP_norm + PGP_norm);
 }
 
 }  // namespace
 
 NewtonKleinmanSolver::NewtonKleinmanSolver(const MatrixRef& Q, const MatrixRef& R, double tolerance,
-                                           int max_iterations)
-    : R_(R), tolerance_(tolerance), max_iterations_(max_iterations), n_(Q.rows()), m_(R.rows()),
-      lyapunov_(std::max<Index>(Q.rows(), 1)) {
+                                           int max_iterations, StabilityProof proof)
+    : R_(R), tolerance_(tolerance), max_iterations_(max_iterations), proof_(proof), n_(Q.rows()), m_(R.rows()),
+      lyapunov_(std::max<Index>(Q.rows(), 1)), certificate_(Q.rows()) {
   if (n_ == 0 || Q.cols() != n_) fail("Q must be square and non-empty, but Q is " + care::shape(Q));
   if (m_ == 0 || R.cols() != m_) fail("R must be square and non-empty, but R is " + care::shape(R));
   if (!Q.allFinite()) fail("Q has a non-finite entry (NaN or Inf)");
@@ -82,6 +85,7 @@ void NewtonKleinmanSolver::factor_closed_loop(const MatrixRef& A, const Iterate&
 }
 
 bool NewtonKleinmanSolver::iterate(const MatrixRef& A, const MatrixRef& P0, bool chord, int& steps) {
+  certified_ = false;
   current_.P = P0;
   symmetrize(current_.P);
   evaluate(A, current_);
@@ -163,8 +167,15 @@ bool NewtonKleinmanSolver::iterate(const MatrixRef& A, const MatrixRef& P0, bool
     std::swap(current_, next_);
   }
 
-  // The one spectrum of the call: the closed loop of the P returned, whose Schur form the next
-  // call's first step uses.
+  // The certificate, a few percent of a Schur form, when asked for and when it holds; the held
+  // Schur form then stays that of the last Newton step.
+  if (proof_ == StabilityProof::lyapunov &&
+      certificate_.proves_hurwitz(A, weights_, current_.P, current_.WP, current_.Res)) {
+    certified_ = true;
+    return true;
+  }
+  // Else the one spectrum of the call: the closed loop of the P returned, whose Schur form the
+  // next call's first step uses.
   try {
     factor_closed_loop(A, current_);
   } catch (const Error& e) {
@@ -196,8 +207,13 @@ const CareResult& NewtonKleinmanSolver::solve(const MatrixRef& A, const MatrixRe
   result_.P = current_.P;
   result_.K = current_.WP;
   weights_.L.transpose().triangularView<Eigen::Upper>().solveInPlace(result_.K);
-  for (Index i = 0; i < n_; ++i)
-    result_.closed_loop_eigenvalues(i) = {lyapunov_.eigenvalues_real()(i), lyapunov_.eigenvalues_imag()(i)};
+  if (certified_) {
+    constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+    result_.closed_loop_eigenvalues.setConstant({nan, nan});
+  } else {
+    for (Index i = 0; i < n_; ++i)
+      result_.closed_loop_eigenvalues(i) = {lyapunov_.eigenvalues_real()(i), lyapunov_.eigenvalues_imag()(i)};
+  }
   result_.relative_residual = current_.Res.norm() / std::max(1.0, q_norm_);
   result_.iterations = steps;
   result_.sign_iterations = 0;

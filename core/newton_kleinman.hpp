@@ -21,17 +21,31 @@
 #include "core/care_result.hpp"
 #include "core/care_weights.hpp"
 #include "core/lyapunov.hpp"
+#include "core/lyapunov_certificate.hpp"
 
 namespace thetad {
+
+// How NewtonKleinmanSolver shows that the P it returns stabilizes A − G P.
+enum class StabilityProof {
+  // The closed-loop spectrum, at every call: CareResult::closed_loop_eigenvalues.
+  spectrum,
+  // LyapunovCertificate (lyapunov_certificate.hpp) when it holds, the spectrum otherwise; when it
+  // held, CareResult::closed_loop_eigenvalues are NaN. Half the Schur forms of the SDRE's warm
+  // step on scenario I, which needs P and no eigenvalues (docs/performance.md).
+  lyapunov,
+};
 
 // One Newton–Kleinman solver for fixed weights Q, R and fixed sizes: the SDRE's warm step. Every
 // buffer is sized at construction; solve() allocates nothing unless it throws. Not thread-safe per
 // object.
 //
 // The Schur form of a closed loop is most of a step's cost, so a step reuses the one this object
-// holds while that pays (a chord step, Δ from the Lyapunov operator of an earlier closed loop):
-// the closed-loop spectrum is computed once per call, at the end, as the check that the returned
-// P stabilizes, and that Schur form is the operator of the next call's first step. A chord step
+// holds while that pays (a chord step, Δ from the Lyapunov operator of an earlier closed loop).
+// The returned P is shown to stabilize as `StabilityProof` says: by the closed-loop spectrum,
+// computed once per call, at the end, whose Schur form is then the operator of the next call's
+// first step; or by a Lyapunov certificate when it holds, which leaves the Schur form of the last
+// Newton step held (of this call or an earlier one: the chord steps' contraction says when it has
+// grown too old, and a Newton step renews it). A chord step
 // that does not lower ρ is undone and the step retaken with a Schur form of the current closed
 // loop (a Newton step); so is every step after one that did not shrink the step twentyfold. When
 // the iteration fails after chord steps (a P that does not stabilize, a stall, too many steps), the
@@ -42,7 +56,8 @@ class NewtonKleinmanSolver {
   // Q n×n symmetric positive semi-definite, R m×m symmetric positive definite (checked, as by
   // solve_care); tolerance > 0 on ρ and on the relative step; max_iterations ≥ 1 steps.
   NewtonKleinmanSolver(const Eigen::Ref<const Eigen::MatrixXd>& Q, const Eigen::Ref<const Eigen::MatrixXd>& R,
-                       double tolerance = 1e-12, int max_iterations = 50);
+                       double tolerance = 1e-12, int max_iterations = 50,
+                       StabilityProof proof = StabilityProof::spectrum);
 
   // The stabilizing solution for (A, B) from P0. The result lives in this object until the next
   // call. Throws thetad::Error when A or B do not fit or are not finite, when P0 does not fit, is
@@ -62,8 +77,11 @@ class NewtonKleinmanSolver {
   // ρ of the P of the last successful solve().
   double last_residual_to_terms() const { return rho_; }
   // Schur forms of the last successful solve(): its Newton steps plus the final one of the
-  // returned P's closed loop (1 when every step reused a held Schur form).
+  // returned P's closed loop unless the Lyapunov certificate held (so 0 when every step reused a
+  // held Schur form and it held).
   int last_schur_forms() const { return schur_forms_; }
+  // The last successful solve() proved stability by the Lyapunov certificate, not the spectrum.
+  bool last_certified() const { return certified_; }
 
  private:
   // An iterate and what is computed from it.
@@ -75,10 +93,10 @@ class NewtonKleinmanSolver {
   void evaluate(const Eigen::Ref<const Eigen::MatrixXd>& A, Iterate& it);
   // Schur form of A − G·P of `it` into lyapunov_.
   void factor_closed_loop(const Eigen::Ref<const Eigen::MatrixXd>& A, const Iterate& it);
-  // The iteration from P0 to current_ and the Schur form of its closed loop, chord steps allowed
-  // from the start when `chord` (a Schur form is held); adds its steps to `steps`, and has
-  // max_iterations_ of its own. False, after a chord step, on any failure but a Lyapunov solve's;
-  // throws otherwise.
+  // The iteration from P0 to current_ and the proof that it stabilizes (the Schur form of its
+  // closed loop or the certificate), chord steps allowed from the start when `chord` (a Schur form
+  // is held); adds its steps to `steps`, and has max_iterations_ of its own. False, after a chord
+  // step, on any failure but a Lyapunov solve's; throws otherwise.
   bool iterate(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::MatrixXd>& P0, bool chord,
                int& steps);
 
@@ -87,8 +105,11 @@ class NewtonKleinmanSolver {
   double tolerance_;
   int max_iterations_;
   double q_norm_;
+  StabilityProof proof_;
   Eigen::Index n_, m_;
   LyapunovWorkspace lyapunov_;
+  LyapunovCertificate certificate_;
+  bool certified_ = false;  // the last iterate()'s P was proved stabilizing by certificate_
   bool held_ = false;  // lyapunov_ holds the Schur form of a stable closed loop of an earlier P
   Iterate current_, next_;
   Eigen::MatrixXd Ak_, delta_, WPWPt_;

@@ -234,6 +234,82 @@ TEST(NewtonKleinman, AnUndoneChordStepIsTakenAgainAsANewtonStep) {
   }
 }
 
+// StabilityProof::lyapunov: the same solutions as with the spectrum, to the tolerance, with fewer
+// Schur forms (the certificate replaces the final one, and the held Schur form is that of the last
+// Newton step); the eigenvalues it did not compute are NaN, never stale.
+TEST(NewtonKleinman, TheLyapunovCertificateSparesSchurFormsAndReportsNoEigenvalues) {
+  const CareProblem p = bench::paper_care_problem();
+  NewtonKleinmanSolver by_spectrum(p.Q, p.R);
+  NewtonKleinmanSolver by_certificate(p.Q, p.R, 1e-12, 50, StabilityProof::lyapunov);
+  MatrixXd P = solve_care(p.A, p.B, p.Q, p.R).P;
+  std::mt19937_64 rng(4);
+  int spectrum_forms = 0, certificate_forms = 0;
+  for (int k = 0; k < 8; ++k) {
+    CareProblem next = p;
+    next.A += 1e-4 * p.A.cwiseProduct(bench::random_normal(p.A.rows(), p.A.cols(), rng));
+    const MatrixXd reference = by_spectrum.solve(next.A, next.B, P).P;
+    spectrum_forms += by_spectrum.last_schur_forms();
+    CareResult result = by_certificate.solve(next.A, next.B, P);
+    certificate_forms += by_certificate.last_schur_forms();
+    EXPECT_TRUE(by_certificate.last_certified()) << "call " << k;
+    EXPECT_TRUE(result.closed_loop_eigenvalues.array().isNaN().all()) << "call " << k;
+    EXPECT_LE((result.P - reference).norm(), 1e-10 * reference.norm()) << "call " << k;
+    EXPECT_LE(residual_of(next, result.P).to_terms, by_certificate.tolerance() + 64.0 * kEps);
+    // Every other property of a solution, with the spectrum recomputed here.
+    result.closed_loop_eigenvalues = Eigen::EigenSolver<MatrixXd>(next.A - next.B * result.K, false).eigenvalues();
+    expect_valid_care(next.A, next.B, next.Q, next.R, result);
+    P = result.P;
+  }
+  EXPECT_LT(certificate_forms, spectrum_forms);
+  EXPECT_FALSE(by_spectrum.last_certified());
+}
+
+// Where no certificate can hold, the spectrum decides and is reported: a stable mode that Q does
+// not weigh has P = 0 there, so P is singular. Two decoupled modes, B = R = I: ẋ1 = −x1 + u1 with
+// q1 = 0 (p1 = 0, closed loop −1), ẋ2 = x2 + u2 with q2 = 1 (p2 = 1 + √2, closed loop −√2).
+TEST(NewtonKleinman, WithoutACertificateTheSpectrumDecides) {
+  const MatrixXd A = Eigen::Vector2d(-1.0, 1.0).asDiagonal();
+  const MatrixXd I2 = MatrixXd::Identity(2, 2);
+  const MatrixXd Q = Eigen::Vector2d(0.0, 1.0).asDiagonal();
+  NewtonKleinmanSolver solver(Q, I2, 1e-12, 50, StabilityProof::lyapunov);
+  const CareResult& result = solver.solve(A, I2, 3.0 * I2);
+  EXPECT_FALSE(solver.last_certified());
+  EXPECT_NEAR(result.P(0, 0), 0.0, 1e-12);
+  EXPECT_NEAR(result.P(1, 1), 1.0 + std::sqrt(2.0), 1e-12);
+  std::vector<double> eigenvalues{result.closed_loop_eigenvalues(0).real(), result.closed_loop_eigenvalues(1).real()};
+  std::sort(eigenvalues.begin(), eigenvalues.end());
+  EXPECT_NEAR(eigenvalues[0], -std::sqrt(2.0), 1e-12);
+  EXPECT_NEAR(eigenvalues[1], -1.0, 1e-12);
+}
+
+// The solution P = 0 (Q = 0, A stable): every term of ρ vanishes with P. The iteration reaches
+// P = 0 exactly (P Newton step by Newton step squared, to underflow) and stops there; it used to
+// divide 0 by 0 and report "the residual is not finite".
+TEST(NewtonKleinman, TheZeroSolutionIsReached) {
+  const MatrixXd A = -MatrixXd::Identity(2, 2);
+  const CareResult result = solve_care_newton(A, MatrixXd::Identity(2, 1), MatrixXd::Zero(2, 2), scalar(1),
+                                              0.5 * MatrixXd::Identity(2, 2));
+  EXPECT_EQ(result.P.norm(), 0.0);
+  EXPECT_EQ(result.relative_residual, 0.0);
+}
+
+// A solution of the CARE that does not stabilize, given as P0 to a solver that holds a Schur form:
+// its chord step changes nothing (the residual is zero), so only the proof of stability can refuse
+// it; the certificate does not hold, the spectrum shows it, and the restart from P0 says why.
+TEST(NewtonKleinman, ASolutionThatDoesNotStabilizeIsNeverReturned) {
+  std::mt19937_64 rng(5);
+  const CareProblem p = bench::random_care_problem("random_n6", 6, 2, rng);
+  const MatrixXd star = solve_care(p.A, p.B, p.Q, p.R).P;
+  const MatrixXd anti = -solve_care(-p.A, p.B, p.Q, p.R).P;
+  for (const StabilityProof proof : {StabilityProof::spectrum, StabilityProof::lyapunov}) {
+    NewtonKleinmanSolver solver(p.Q, p.R, 1e-12, 50, proof);
+    solver.solve(p.A, p.B, star);
+    EXPECT_THAT(error_message([&] { solver.solve(p.A, p.B, anti); }), HasSubstr("P0 is not stabilizing"));
+    // The solver is still usable: the failed call held no Schur form.
+    EXPECT_LE((solver.solve(p.A, p.B, star).P - star).norm(), 1e-10 * star.norm());
+  }
+}
+
 TEST(NewtonKleinman, Errors) {
   MatrixXd A(2, 2);
   A << 1, 1, 0, 2;
