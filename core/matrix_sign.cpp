@@ -1,18 +1,34 @@
 #include "core/matrix_sign.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace thetad {
 
-MatrixSignSolver::MatrixSignSolver(Eigen::Index N) : Z_(N, N), next_(N, N), lu_(N) {}
+namespace {
 
-// Z⁻¹ = U⁻¹ L⁻¹ P from PZ = LU, in next_: PartialPivLU::inverse() allocates for the permutation.
+// Columns of L⁻¹ solved at a time: measured on random N = 36 and 120 matrices, 8 to 16 were
+// fastest, 4 and 32 slower (the identity's zeros against the calls' overhead).
+constexpr Eigen::Index kInverseBlock = 16;
+
+}  // namespace
+
+MatrixSignSolver::MatrixSignSolver(Eigen::Index N) : Z_(N, N), next_(N, N), inverse_(N, N), lu_(N) {}
+
+// What PartialPivLU::inverse() does without its allocations, and with the triangle of L⁻¹ that is
+// zero left out: L⁻¹ is unit lower triangular, so a block of its columns from j on is solved on the
+// rows from j down only. That is a third of the arithmetic of solving L against the whole identity
+// (measured: the inversion 0.73× as long at N = 120, 0.92× at N = 36, bit for bit the same result).
 void MatrixSignSolver::invert_factored() {
-  const auto& permutation = lu_.permutationP().indices();
-  next_.setZero();
-  for (Eigen::Index i = 0; i < next_.cols(); ++i) next_(permutation(i), i) = 1.0;
-  lu_.matrixLU().triangularView<Eigen::UnitLower>().solveInPlace(next_);
-  lu_.matrixLU().triangularView<Eigen::Upper>().solveInPlace(next_);
+  const auto& LU = lu_.matrixLU();
+  const Eigen::Index N = LU.rows();
+  inverse_.setIdentity();
+  for (Eigen::Index j = 0; j < N; j += kInverseBlock) {
+    const Eigen::Index columns = std::min(kInverseBlock, N - j);
+    LU.bottomRightCorner(N - j, N - j).triangularView<Eigen::UnitLower>().solveInPlace(
+        inverse_.block(j, j, N - j, columns));
+  }
+  LU.triangularView<Eigen::Upper>().solveInPlace(inverse_);
 }
 
 std::optional<int> MatrixSignSolver::compute(const Eigen::Ref<const Eigen::MatrixXd>& Z, int max_iterations) {
@@ -23,12 +39,14 @@ std::optional<int> MatrixSignSolver::compute(const Eigen::Ref<const Eigen::Matri
   for (int iteration = 1; iteration <= max_iterations; ++iteration) {
     lu_.compute(Z_);
     invert_factored();
-    if (!next_.allFinite()) return std::nullopt;
+    if (!inverse_.allFinite()) return std::nullopt;
     // Scaling brings the eigenvalues near ±1 in the first steps, where plain Newton would halve
     // a large eigenvalue per step; near convergence it only perturbs the quadratic phase.
     const double c =
         scaled ? std::exp(-lu_.matrixLU().diagonal().cwiseAbs().array().log().sum() / static_cast<double>(N)) : 1.0;
-    next_ = 0.5 * (c * Z_ + next_ / c);
+    // Z⁻¹ = U⁻¹L⁻¹P: column j of Z⁻¹ is column permutation(j) of inverse_.
+    const auto& permutation = lu_.permutationP().indices();
+    for (Eigen::Index j = 0; j < N; ++j) next_.col(j) = 0.5 * (c * Z_.col(j) + inverse_.col(permutation(j)) / c);
     const double change = (next_ - Z_).lpNorm<1>() / next_.lpNorm<1>();
     Z_.swap(next_);
     if (last) return iteration;

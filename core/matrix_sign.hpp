@@ -32,9 +32,10 @@ class MatrixSignSolver {
   const Eigen::MatrixXd& sign() const { return Z_; }
 
  private:
+  // inverse_ = U⁻¹L⁻¹ from PZ = LU: Z⁻¹ with its columns permuted.
   void invert_factored();
 
-  Eigen::MatrixXd Z_, next_;
+  Eigen::MatrixXd Z_, next_, inverse_;
   Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
 };
 
