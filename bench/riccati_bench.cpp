@@ -18,7 +18,9 @@
 #include "bench/care_problems.hpp"
 #include "bench/slicot.hpp"
 #include "core/lapack.hpp"
+#include "core/care_weights.hpp"
 #include "core/lyapunov.hpp"
+#include "core/lyapunov_certificate.hpp"
 #include "core/riccati.hpp"
 
 namespace {
@@ -113,8 +115,10 @@ void bm_solve_care_newton(benchmark::State& state, const Problem& p) {
   state.counters["iterations"] = result.iterations;
 }
 
-// The same solve through a NewtonKleinmanSolver built once, as the SDRE's warm step uses it: no
-// allocation, Q and R checked once.
+// The same solve through a NewtonKleinmanSolver built once, allocation-free with Q and R checked
+// once, as the SDRE's warm step uses it except for the proof of stability: the spectrum here, the
+// Lyapunov certificate there (timed on its own below; the SDRE rows of controllers_bench time it
+// in use).
 void bm_newton_kleinman_solver(benchmark::State& state, const Problem& p) {
   thetad::NewtonKleinmanSolver solver(p.Q, p.R);
   const thetad::CareResult* result = nullptr;
@@ -275,6 +279,24 @@ void bm_lyapunov_solve_factored(benchmark::State& state, const Problem& p) {
   state.counters["residual"] = lyapunov_residual(p, X);
 }
 
+// The proof of stability that replaces the final Schur form of the SDRE's warm step
+// (lyapunov_certificate.hpp), at the solution P: to be read against lyapunov_factor_solve, whose
+// Schur form it spares.
+void bm_lyapunov_certificate(benchmark::State& state, const Problem& p) {
+  thetad::care::Weights w = thetad::care::prepare_weights(p.Q, p.R);
+  thetad::care::set_input_matrix(w, p.B);
+  const MatrixXd WP = w.W * p.P;
+  MatrixXd Res(p.P.rows(), p.P.cols());
+  thetad::care::care_residual(p.A, w, p.P, WP, Res);
+  thetad::LyapunovCertificate certificate(p.P.rows());
+  bool holds = false;
+  for (auto _ : state) {
+    holds = certificate.proves_hurwitz(p.A, w, p.P, WP, Res);
+    benchmark::DoNotOptimize(holds);
+  }
+  state.counters["holds"] = holds ? 1.0 : 0.0;
+}
+
 void bm_alt_lyapunov_dgees_dtrsyl(benchmark::State& state, const Problem& p) {
   const auto n = static_cast<lapack_int>(p.Ac.rows());
   MatrixXd T(n, n), U(n, n), Y(n, n), work(n, n), X(n, n);
@@ -320,6 +342,7 @@ int main(int argc, char** argv) {
       {"sb02md", bm_sb02md},
       {"solve_lyapunov", bm_solve_lyapunov},
       {"lyapunov_factor_solve", bm_lyapunov_factor_solve},
+      {"lyapunov_certificate", bm_lyapunov_certificate},
       {"lyapunov_solve_factored", bm_lyapunov_solve_factored},
       {"alt_lyapunov_dgees_dtrsyl", bm_alt_lyapunov_dgees_dtrsyl},
   };

@@ -1,5 +1,6 @@
 #include "core/lyapunov_certificate.hpp"
 
+#include <cmath>
 #include <limits>
 
 namespace thetad {
@@ -12,11 +13,14 @@ constexpr double kEps = std::numeric_limits<double>::epsilon();
 LyapunovCertificate::LyapunovCertificate(Eigen::Index n) : M_(n, n), cholesky_(n) {}
 
 bool LyapunovCertificate::positive_definite(const Eigen::MatrixXd& X, double rounding) {
-  // A Cholesky factorization that succeeds in floating point is the exact one of X + E with
+  // A Cholesky factorization that succeeds in floating point is the exact one of X − mI + E with
   // |E| ≤ γ_{n+1}|L||L'| (Higham, Accuracy and Stability of Numerical Algorithms, Thm 10.3), and
-  // ‖ |L||L'| ‖_F ≤ n‖X + E‖_F: 2n(n+1)ε‖X‖_F bounds ‖E‖_2 with room for the second-order terms.
+  // ‖ |L||L'| ‖_F ≤ ‖L‖_F² = tr(X − mI + E) ≤ √n‖X‖_F + n‖E‖_2, so ‖E‖_2 ≲ (n + 1)√n ε‖X‖_F:
+  // 2n(n + 1)ε‖X‖_F bounds it with room for the second-order terms.
   const double n = static_cast<double>(X.rows());
   const double margin = rounding + 2.0 * n * (n + 1.0) * kEps * X.norm();
+  // A NaN or an infinity would pass: LLT fails only on a pivot ≤ 0, and NaN ≤ 0 is false.
+  if (!std::isfinite(margin)) return false;
   cholesky_.compute(X - margin * Eigen::MatrixXd::Identity(X.rows(), X.cols()));
   return cholesky_.info() == Eigen::Success;
 }
@@ -26,14 +30,17 @@ bool LyapunovCertificate::proves_hurwitz(const care::MatrixRef& A, const care::W
   if (!positive_definite(P, 0.0)) return false;
   M_ = w.Q - Res;
   M_.noalias() += WP.transpose() * WP;
-  // What Res and M carry of rounding, with their products bounded by the norms of their factors
-  // (a product of inner dimension k errs by at most kε|X||Y| per entry, Higham Thm 3.5): not by
-  // the size of the terms, which cancel and would understate it. Res = A'P + PA − (WP)'(WP) + Q,
-  // and M adds Q and (WP)'(WP) once more.
+  // What M carries of rounding, with every product bounded by the norms of its factors (a product
+  // of inner dimension k errs by at most kε|X||Y| per entry, Higham Thm 3.5), not by the size of
+  // the terms, which cancel and would understate it: Res = A'P + PA − (WP)'(WP) + Q, M adds Q and
+  // (WP)'(WP) once more, and WP itself is W·P rounded, which enters M twice against WP (the closed
+  // loop proved Hurwitz is A − W'W P with the exact product).
   const double n = static_cast<double>(P.rows());
   const double m = static_cast<double>(WP.rows());
-  const double wp_squared = WP.squaredNorm();
-  const double rounding = (n + m + 4.0) * kEps * (w.Q.norm() + 2.0 * A.norm() * P.norm() + 2.0 * wp_squared);
+  const double wp_norm = WP.norm();
+  const double p_norm = P.norm();
+  const double rounding = (n + m + 4.0) * kEps * (w.Q.norm() + 2.0 * A.norm() * p_norm + 2.0 * wp_norm * wp_norm) +
+                          4.0 * n * kEps * w.W.norm() * p_norm * wp_norm;
   return positive_definite(M_, rounding);
 }
 

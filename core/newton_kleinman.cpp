@@ -204,6 +204,8 @@ const CareResult& NewtonKleinmanSolver::solve(const MatrixRef& A, const MatrixRe
   if (!iterate(A, P0, held, steps)) iterate(A, P0, false, steps);
   held_ = true;
   rho_ = current_.rho;
+  last_schur_forms_ = schur_forms_;
+  last_certified_ = certified_;
   result_.P = current_.P;
   result_.K = current_.WP;
   weights_.L.transpose().triangularView<Eigen::Upper>().solveInPlace(result_.K);

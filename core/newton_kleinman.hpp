@@ -30,8 +30,8 @@ enum class StabilityProof {
   // The closed-loop spectrum, at every call: CareResult::closed_loop_eigenvalues.
   spectrum,
   // LyapunovCertificate (lyapunov_certificate.hpp) when it holds, the spectrum otherwise; when it
-  // held, CareResult::closed_loop_eigenvalues are NaN. Half the Schur forms of the SDRE's warm
-  // step on scenario I, which needs P and no eigenvalues (docs/performance.md).
+  // held, CareResult::closed_loop_eigenvalues are NaN. One Schur form fewer per call of the SDRE's
+  // warm step on scenario I, which needs P and no eigenvalues (docs/performance.md).
   lyapunov,
 };
 
@@ -44,10 +44,10 @@ enum class StabilityProof {
 // The returned P is shown to stabilize as `StabilityProof` says: by the closed-loop spectrum,
 // computed once per call, at the end, whose Schur form is then the operator of the next call's
 // first step; or by a Lyapunov certificate when it holds, which leaves the Schur form of the last
-// Newton step held (of this call or an earlier one: the chord steps' contraction says when it has
-// grown too old, and a Newton step renews it). A chord step
-// that does not lower ρ is undone and the step retaken with a Schur form of the current closed
-// loop (a Newton step); so is every step after one that did not shrink the step twentyfold. When
+// Newton step held, of this call or of one any number of calls before. A chord step that does not
+// lower ρ is undone and the step retaken with a Schur form of the current closed loop (a Newton
+// step); so is every step after one that did not shrink the step twentyfold (from a call's third
+// step on, when there is a ratio of steps): that is what renews a held Schur form grown too old. When
 // the iteration fails after chord steps (a P that does not stabilize, a stall, too many steps), the
 // call starts again from P0 with Newton steps only. The stopping rule above is the same for both
 // kinds of step; only a Newton step can stall.
@@ -79,9 +79,9 @@ class NewtonKleinmanSolver {
   // Schur forms of the last successful solve(): its Newton steps plus the final one of the
   // returned P's closed loop unless the Lyapunov certificate held (so 0 when every step reused a
   // held Schur form and it held).
-  int last_schur_forms() const { return schur_forms_; }
+  int last_schur_forms() const { return last_schur_forms_; }
   // The last successful solve() proved stability by the Lyapunov certificate, not the spectrum.
-  bool last_certified() const { return certified_; }
+  bool last_certified() const { return last_certified_; }
 
  private:
   // An iterate and what is computed from it.
@@ -110,11 +110,14 @@ class NewtonKleinmanSolver {
   LyapunovWorkspace lyapunov_;
   LyapunovCertificate certificate_;
   bool certified_ = false;  // the last iterate()'s P was proved stabilizing by certificate_
+  int schur_forms_ = 0;     // of the current solve()
   bool held_ = false;  // lyapunov_ holds the Schur form of a stable closed loop of an earlier P
   Iterate current_, next_;
   Eigen::MatrixXd Ak_, delta_, WPWPt_;
+  // What the last successful solve() reports.
   double rho_ = 0.0;
-  int schur_forms_ = 0;
+  int last_schur_forms_ = 0;
+  bool last_certified_ = false;
   CareResult result_;
 };
 

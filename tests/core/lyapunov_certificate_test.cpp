@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 #include <string>
 
@@ -81,11 +82,23 @@ TEST(LyapunovCertificate, HoldsAtTheStabilizingSolution) {
 
 TEST(LyapunovCertificate, NeverHoldsWhereItCannot) {
   // ẋ = x + u, Q = R = 1: the CARE 2P − P² + 1 = 0 has P = 1 ± √2; 1 − √2 leaves the closed loop
-  // at √2.
+  // at √2 (and P ≺ 0).
   CareProblem scalar{"scalar", MatrixXd::Constant(1, 1, 1.0), MatrixXd::Constant(1, 1, 1.0),
                      MatrixXd::Constant(1, 1, 1.0), MatrixXd::Constant(1, 1, 1.0)};
-  EXPECT_TRUE(certified(scalar, MatrixXd::Constant(1, 1, 1.0 + std::sqrt(2.0))));
-  EXPECT_FALSE(certified(scalar, MatrixXd::Constant(1, 1, 1.0 - std::sqrt(2.0))));
+  const auto at = [&](double p) { return certified(scalar, MatrixXd::Constant(1, 1, p)); };
+  EXPECT_TRUE(at(1.0 + std::sqrt(2.0)));
+  EXPECT_FALSE(at(1.0 - std::sqrt(2.0)));
+  // P ≻ 0 but the closed loop 1 − P is unstable: only the second inequality can refuse it
+  // (Q + PGP − Res = 2P(P − 1) < 0).
+  EXPECT_FALSE(at(0.5));
+  // P = 1 + 2⁻⁴⁰: the closed loop −2⁻⁴⁰ is stable and Q + PGP − Res = 2P(P − 1) ≈ 1.8e-12 clears
+  // the margin; at P = 1 + 2⁻⁵⁰ it is ≈ 1.8e-15, stable still, but within the rounding of Res
+  // (≈ 7e-15 here), where a computed sign proves nothing: the margin must refuse it.
+  EXPECT_TRUE(at(1.0 + std::ldexp(1.0, -40)));
+  EXPECT_FALSE(at(1.0 + std::ldexp(1.0, -50)));
+  // Not finite: no proof (Eigen's Cholesky does not fail on NaN pivots by itself).
+  EXPECT_FALSE(at(std::numeric_limits<double>::quiet_NaN()));
+  EXPECT_FALSE(at(std::numeric_limits<double>::infinity()));
   // A stable plant that Q does not weigh: P = 0 stabilizes, but no P ≻ 0 shows it; the spectrum
   // must decide.
   CareProblem unweighed{"unweighed", -MatrixXd::Identity(2, 2), MatrixXd::Identity(2, 1), MatrixXd::Zero(2, 2),

@@ -267,14 +267,16 @@ TEST(NewtonKleinman, TheLyapunovCertificateSparesSchurFormsAndReportsNoEigenvalu
 // Where no certificate can hold, the spectrum decides and is reported: a stable mode that Q does
 // not weigh has P = 0 there, so P is singular. Two decoupled modes, B = R = I: ẋ1 = −x1 + u1 with
 // q1 = 0 (p1 = 0, closed loop −1), ẋ2 = x2 + u2 with q2 = 1 (p2 = 1 + √2, closed loop −√2).
+// From p1 = 0 the iteration leaves p1 at exactly 0 (its residual is exactly 0).
 TEST(NewtonKleinman, WithoutACertificateTheSpectrumDecides) {
   const MatrixXd A = Eigen::Vector2d(-1.0, 1.0).asDiagonal();
   const MatrixXd I2 = MatrixXd::Identity(2, 2);
   const MatrixXd Q = Eigen::Vector2d(0.0, 1.0).asDiagonal();
   NewtonKleinmanSolver solver(Q, I2, 1e-12, 50, StabilityProof::lyapunov);
-  const CareResult& result = solver.solve(A, I2, 3.0 * I2);
+  const MatrixXd P0 = Eigen::Vector2d(0.0, 3.0).asDiagonal();
+  const CareResult& result = solver.solve(A, I2, P0);
   EXPECT_FALSE(solver.last_certified());
-  EXPECT_NEAR(result.P(0, 0), 0.0, 1e-12);
+  EXPECT_EQ(result.P(0, 0), 0.0);
   EXPECT_NEAR(result.P(1, 1), 1.0 + std::sqrt(2.0), 1e-12);
   std::vector<double> eigenvalues{result.closed_loop_eigenvalues(0).real(), result.closed_loop_eigenvalues(1).real()};
   std::sort(eigenvalues.begin(), eigenvalues.end());
@@ -282,9 +284,10 @@ TEST(NewtonKleinman, WithoutACertificateTheSpectrumDecides) {
   EXPECT_NEAR(eigenvalues[1], -1.0, 1e-12);
 }
 
-// The solution P = 0 (Q = 0, A stable): every term of ρ vanishes with P. The iteration reaches
-// P = 0 exactly (P Newton step by Newton step squared, to underflow) and stops there; it used to
-// divide 0 by 0 and report "the residual is not finite".
+// The solution P = 0 (Q = 0, A stable): every term of ρ vanishes with P, so ρ stays near 1 until
+// P is exactly 0. A Newton step takes p to p²/(2(1 + p)) (0.5, 0.083, …, 8.6e-23) and then to 0
+// exactly, once 1 + p rounds to 1; the iteration used to divide 0 by 0 there and report "the
+// residual is not finite".
 TEST(NewtonKleinman, TheZeroSolutionIsReached) {
   const MatrixXd A = -MatrixXd::Identity(2, 2);
   const CareResult result = solve_care_newton(A, MatrixXd::Identity(2, 1), MatrixXd::Zero(2, 2), scalar(1),
@@ -294,8 +297,8 @@ TEST(NewtonKleinman, TheZeroSolutionIsReached) {
 }
 
 // A solution of the CARE that does not stabilize, given as P0 to a solver that holds a Schur form:
-// its chord step changes nothing (the residual is zero), so only the proof of stability can refuse
-// it; the certificate does not hold, the spectrum shows it, and the restart from P0 says why.
+// its residual is at rounding level, so chord steps barely move it and only a proof of stability
+// can refuse it; whichever way the call goes, it must end in an error, never in that solution.
 TEST(NewtonKleinman, ASolutionThatDoesNotStabilizeIsNeverReturned) {
   std::mt19937_64 rng(5);
   const CareProblem p = bench::random_care_problem("random_n6", 6, 2, rng);
