@@ -38,11 +38,11 @@ SdreController::SdreController(const SdcPlant& model, SdreSettings settings)
     throw Error("sdre: R must be symmetric positive definite");
   }
   R_inverse_ = llt.solve(Eigen::MatrixXd::Identity(m, m));
-  // The warm step needs P, not the closed-loop eigenvalues: the Lyapunov certificate spares it
-  // a Schur form whenever it holds.
+  // Both steps need P, not the closed-loop eigenvalues: the Lyapunov certificate spares the warm
+  // one a Schur form and the cold one an eigensolver whenever it holds.
   newton_.emplace(settings_.Q, settings_.R, settings_.newton_tolerance, settings_.newton_max_iterations,
                   StabilityProof::lyapunov);
-  cold_.emplace(settings_.Q, settings_.R);
+  cold_.emplace(settings_.Q, settings_.R, CareMethod::automatic, StabilityProof::lyapunov);
 
   F_.setZero(n, n);
   B_.setZero(n, m);

@@ -28,7 +28,8 @@ namespace thetad {
 
 struct SdreSettings {
   enum class Mode {
-    cold,  // CareSolver (matrix sign function, Laub–Schur fallback) at every pass
+    cold,  // CareSolver (matrix sign function, Laub–Schur fallback) at every pass, its stability
+           // proved by the Lyapunov certificate when that holds
     warm,  // Newton–Kleinman from the last P (NewtonKleinmanSolver, its stability proved by the
            // Lyapunov certificate when that holds), the cold solve when that fails
   };

@@ -6,11 +6,23 @@
 
 namespace thetad {
 
+// How a CARE solver shows that the P it returns stabilizes A − B K (the CareSolver and
+// NewtonKleinmanSolver objects take it; the one-off functions use the spectrum).
+enum class StabilityProof {
+  // The closed-loop spectrum, at every call: CareResult::closed_loop_eigenvalues.
+  spectrum,
+  // LyapunovCertificate (lyapunov_certificate.hpp) when it holds, the spectrum otherwise; when it
+  // held, CareResult::closed_loop_eigenvalues are NaN. For a caller that needs P and not the
+  // eigenvalues, as the SDRE: it spares the warm step one Schur form per call and the cold step
+  // an eigensolver (docs/performance.md).
+  lyapunov,
+};
+
 struct CareResult {
   Eigen::MatrixXd P;                         // stabilizing solution, exactly symmetric
   Eigen::MatrixXd K;                         // R⁻¹ B' P: the optimal feedback is u = −K x
-  // eig(A − B K); NaN when a NewtonKleinmanSolver asked for StabilityProof::lyapunov proved the
-  // closed loop stable without them.
+  // eig(A − B K); NaN when a solver asked for StabilityProof::lyapunov proved the closed loop
+  // stable without them.
   Eigen::VectorXcd closed_loop_eigenvalues;
   // ‖A'P + PA − PBR⁻¹B'P + Q‖_F / max(1, ‖Q‖_F). On ill-conditioned equations the terms of
   // the sum can be far larger than Q, and so is this number even for a backward-stable solve.

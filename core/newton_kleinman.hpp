@@ -25,16 +25,6 @@
 
 namespace thetad {
 
-// How NewtonKleinmanSolver shows that the P it returns stabilizes A − G P.
-enum class StabilityProof {
-  // The closed-loop spectrum, at every call: CareResult::closed_loop_eigenvalues.
-  spectrum,
-  // LyapunovCertificate (lyapunov_certificate.hpp) when it holds, the spectrum otherwise; when it
-  // held, CareResult::closed_loop_eigenvalues are NaN. One Schur form fewer per call of the SDRE's
-  // warm step on scenario I, which needs P and no eigenvalues (docs/performance.md).
-  lyapunov,
-};
-
 // One Newton–Kleinman solver for fixed weights Q, R and fixed sizes: the SDRE's warm step. Every
 // buffer is sized at construction; solve() allocates nothing unless it throws. Not thread-safe per
 // object.

@@ -15,6 +15,7 @@
 #include "core/error.hpp"
 #include "core/lapack.hpp"
 #include "core/lyapunov.hpp"
+#include "core/lyapunov_certificate.hpp"
 #include "core/matrix_sign.hpp"
 
 namespace thetad {
@@ -60,7 +61,7 @@ struct Candidate {
 // Both direct methods work on a diagonally scaled H_s = D⁻¹ H D, D = diag(d); a basis of the
 // stable subspace of H is D times one of H_s's, so [I; P_s] for H_s gives P = D2 P_s D1⁻¹.
 struct CareSolver::Workspace {
-  Workspace(const MatrixRef& Q, const MatrixRef& R, CareMethod method);
+  Workspace(const MatrixRef& Q, const MatrixRef& R, CareMethod method, StabilityProof proof);
 
   const CareResult& solve(const MatrixRef& A, const MatrixRef& B);
 
@@ -76,6 +77,7 @@ struct CareSolver::Workspace {
   const CareResult& finish(const MatrixRef& A, const MatrixRef& B, bool have_spectrum, int iterations);
 
   CareMethod method;
+  StabilityProof proof;
   Weights w;
   MatrixXd R;  // as given: only for check_inputs' sizes
   Index n, m;
@@ -91,15 +93,16 @@ struct CareSolver::Workspace {
   Candidate candidate, next;
   MatrixXd Ak, delta;
   LyapunovWorkspace lyapunov;
+  LyapunovCertificate certificate;
   Eigen::EigenSolver<MatrixXd> eigen;
   CareResult result;
 };
 
-CareSolver::Workspace::Workspace(const MatrixRef& Q, const MatrixRef& R_, CareMethod method_)
-    : method(method_), R(R_), n(Q.rows()), m(R_.rows()), H(2 * n, 2 * n), H_s(2 * n, 2 * n), d(2 * n),
+CareSolver::Workspace::Workspace(const MatrixRef& Q, const MatrixRef& R_, CareMethod method_, StabilityProof proof_)
+    : method(method_), proof(proof_), R(R_), n(Q.rows()), m(R_.rows()), H(2 * n, 2 * n), H_s(2 * n, 2 * n), d(2 * n),
       sign(2 * n), lhs(2 * n, n), rhs(2 * n, n), qr_coefficients(n), qr_workspace(n), U(2 * n, 2 * n), U1(n, n), X(n, n),
       wr(2 * n), wi(2 * n), lu_work(4 * n), bwork(2 * n), pivots(n), lu_iwork(n), Ak(n, n), delta(n, n),
-      lyapunov(std::max<Index>(n, 1)), eigen(n) {
+      lyapunov(std::max<Index>(n, 1)), certificate(n), eigen(n) {
   if (n == 0 || Q.cols() != n) fail("Q must be square and non-empty, but Q is " + care::shape(Q));
   if (m == 0 || R_.cols() != m) fail("R must be square and non-empty, but R is " + care::shape(R_));
   if (!Q.allFinite()) fail("Q has a non-finite entry (NaN or Inf)");
@@ -288,8 +291,9 @@ int CareSolver::Workspace::refine(const MatrixRef& A) {
   return refinements;
 }
 
-// Fills K, the closed-loop spectrum (unless wr, wi hold it already) and the residual, and refuses a
-// P that does not stabilize: the last line of defence against returning garbage.
+// Fills K, the closed-loop spectrum (unless wr, wi hold it already, or the Lyapunov certificate
+// proves stability when asked to) and the residual, and refuses a P that does not stabilize: the
+// last line of defence against returning garbage.
 const CareResult& CareSolver::Workspace::finish(const MatrixRef& A, const MatrixRef& B, bool have_spectrum,
                                                 int iterations) {
   // A basis of the stable subspace that is not a graph can slip past the rcond test (or come out
@@ -298,18 +302,25 @@ const CareResult& CareSolver::Workspace::finish(const MatrixRef& A, const Matrix
     fail("no stabilizing solution: the computed P has non-finite entries" + std::string(kStabilizabilityHint));
   result.K = candidate.WP;
   w.L.transpose().triangularView<Eigen::Upper>().solveInPlace(result.K);
-  if (have_spectrum) {
-    for (Index i = 0; i < n; ++i) result.closed_loop_eigenvalues(i) = {wr(i), wi(i)};
+  const bool certified = !have_spectrum && proof == StabilityProof::lyapunov &&
+                         certificate.proves_hurwitz(A, w, candidate.P, candidate.WP, candidate.Res);
+  if (certified) {
+    constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+    result.closed_loop_eigenvalues.setConstant({nan, nan});
   } else {
-    Ak = A;
-    Ak.noalias() -= B * result.K;
-    eigen.compute(Ak, false);
-    result.closed_loop_eigenvalues = eigen.eigenvalues();
+    if (have_spectrum) {
+      for (Index i = 0; i < n; ++i) result.closed_loop_eigenvalues(i) = {wr(i), wi(i)};
+    } else {
+      Ak = A;
+      Ak.noalias() -= B * result.K;
+      eigen.compute(Ak, false);
+      result.closed_loop_eigenvalues = eigen.eigenvalues();
+    }
+    const double max_real = result.closed_loop_eigenvalues.real().maxCoeff();
+    if (!(max_real < 0.0))
+      fail("the solution is not stabilizing: A − BK has an eigenvalue with Re λ = " + num(max_real) +
+           kStabilizabilityHint);
   }
-  const double max_real = result.closed_loop_eigenvalues.real().maxCoeff();
-  if (!(max_real < 0.0))
-    fail("the solution is not stabilizing: A − BK has an eigenvalue with Re λ = " + num(max_real) +
-         kStabilizabilityHint);
   result.relative_residual = care::relative_to_q(candidate.Res.norm(), w);
   result.P = candidate.P;
   result.iterations = iterations;
@@ -353,8 +364,8 @@ const CareResult& CareSolver::Workspace::solve(const MatrixRef& A, const MatrixR
   return result;
 }
 
-CareSolver::CareSolver(const MatrixRef& Q, const MatrixRef& R, CareMethod method)
-    : workspace_(std::make_unique<Workspace>(Q, R, method)) {}
+CareSolver::CareSolver(const MatrixRef& Q, const MatrixRef& R, CareMethod method, StabilityProof proof)
+    : workspace_(std::make_unique<Workspace>(Q, R, method, proof)) {}
 
 CareSolver::~CareSolver() = default;
 

@@ -52,9 +52,11 @@ enum class CareMethod {
 // names the precondition the data break, care_diagnosis.hpp). Not thread-safe per object.
 class CareSolver {
  public:
-  // Q n×n symmetric positive semi-definite, R m×m symmetric positive definite (checked).
+  // Q n×n symmetric positive semi-definite, R m×m symmetric positive definite (checked). The
+  // proof only matters on the matrix-sign path: the Schur method has the closed-loop spectrum for
+  // free, unless a Newton refinement moved P.
   CareSolver(const Eigen::Ref<const Eigen::MatrixXd>& Q, const Eigen::Ref<const Eigen::MatrixXd>& R,
-             CareMethod method = CareMethod::automatic);
+             CareMethod method = CareMethod::automatic, StabilityProof proof = StabilityProof::spectrum);
   ~CareSolver();
   CareSolver(const CareSolver& other);
   CareSolver& operator=(const CareSolver&) = delete;

@@ -80,6 +80,40 @@ TEST(CareSolver, SameAnswerAsSolveCareOverSeveralSolvesWithoutAllocating) {
   }
 }
 
+// StabilityProof::lyapunov (the SDRE's): the same P, K and residual bit for bit, with no
+// eigensolver where the certificate holds (then the eigenvalues are NaN), the spectrum otherwise;
+// the Schur method's spectrum comes free and is always reported.
+TEST(CareSolver, TheLyapunovCertificateReplacesOnlyTheEigensolver) {
+  const long probe = testing::heap_allocations_during([] { std::vector<double> v(4); });
+  int certified = 0;
+  for (const auto& [n, m] : {std::pair<Eigen::Index, Eigen::Index>{6, 2}, {18, 5}, {60, 20}}) {
+    std::mt19937_64 rng(static_cast<std::uint64_t>(100 * n + m));
+    const Equation e = random_equation(n, m, rng);
+    for (const auto& [method, method_name] : kMethods) {
+      SCOPED_TRACE("n=" + std::to_string(n) + " " + method_name);
+      const CareResult expected = solve_care(e.A, e.B, e.Q, e.R, method);
+      CareSolver solver(e.Q, e.R, method, StabilityProof::lyapunov);
+      const CareResult* result = nullptr;
+      const long allocations = testing::heap_allocations_during([&] { result = &solver.solve(e.A, e.B); });
+      EXPECT_EQ(result->P, expected.P);
+      EXPECT_EQ(result->K, expected.K);
+      EXPECT_EQ(result->relative_residual, expected.relative_residual);
+      EXPECT_EQ(result->sign_iterations, expected.sign_iterations);
+      if (result->closed_loop_eigenvalues.array().isNaN().all()) {
+        EXPECT_GT(expected.sign_iterations, 0) << "certified on the Schur path, whose spectrum is free";
+        ++certified;
+      } else {
+        EXPECT_EQ(result->closed_loop_eigenvalues, expected.closed_loop_eigenvalues);
+      }
+      if (probe >= 0) {
+        EXPECT_EQ(allocations, 0);
+      }
+    }
+  }
+  // automatic and matrix_sign at each size take the sign path here, and Q ≻ 0.
+  EXPECT_EQ(certified, 6);
+}
+
 TEST(CareSolver, RefusesWhatSolveCareRefuses) {
   // The unstabilizable pair of care_errors_test: the same message from both.
   const MatrixXd A = Eigen::Vector2d(1, 2).asDiagonal();
