@@ -2,6 +2,8 @@
 
 // What every CARE solver returns (riccati.hpp, newton_kleinman.hpp).
 
+#include <limits>
+
 #include <Eigen/Dense>
 
 namespace thetad {
@@ -35,5 +37,12 @@ struct CareResult {
   // form or from Newton–Kleinman.
   int sign_iterations = 0;
 };
+
+// closed_loop_eigenvalues of a result whose stability the Lyapunov certificate proved: NaN, so that
+// no eigenvalue of an earlier solve is left behind; in place, so that nothing is allocated.
+inline void leave_spectrum_uncomputed(CareResult& result) {
+  constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+  result.closed_loop_eigenvalues.setConstant({nan, nan});
+}
 
 }  // namespace thetad

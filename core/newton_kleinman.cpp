@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <complex>
 #include <limits>
 #include <string>
 #include <utility>
@@ -210,8 +209,7 @@ const CareResult& NewtonKleinmanSolver::solve(const MatrixRef& A, const MatrixRe
   result_.K = current_.WP;
   weights_.L.transpose().triangularView<Eigen::Upper>().solveInPlace(result_.K);
   if (certified_) {
-    constexpr double nan = std::numeric_limits<double>::quiet_NaN();
-    result_.closed_loop_eigenvalues.setConstant({nan, nan});
+    leave_spectrum_uncomputed(result_);
   } else {
     for (Index i = 0; i < n_; ++i)
       result_.closed_loop_eigenvalues(i) = {lyapunov_.eigenvalues_real()(i), lyapunov_.eigenvalues_imag()(i)};

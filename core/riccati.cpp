@@ -305,8 +305,7 @@ const CareResult& CareSolver::Workspace::finish(const MatrixRef& A, const Matrix
   const bool certified = !have_spectrum && proof == StabilityProof::lyapunov &&
                          certificate.proves_hurwitz(A, w, candidate.P, candidate.WP, candidate.Res);
   if (certified) {
-    constexpr double nan = std::numeric_limits<double>::quiet_NaN();
-    result.closed_loop_eigenvalues.setConstant({nan, nan});
+    leave_spectrum_uncomputed(result);
   } else {
     if (have_spectrum) {
       for (Index i = 0; i < n; ++i) result.closed_loop_eigenvalues(i) = {wr(i), wi(i)};
