@@ -88,7 +88,10 @@ ThetaDController::ThetaDController(const SdcPlant& model, ThetaDSettings setting
 
   F_.resize(n, n);
   B_.resize(n, m);
-  scaled_inputs_.resize(n, 2 * m);
+  for (Eigen::Index r = 0; r < n; ++r) every_row_.push_back(r);
+  input_rows_ = every_row_;
+  compact_inputs_.resize(n, 2 * m);
+  product_columns_.resize(n, n);
   const auto entries = static_cast<std::size_t>(n * n);
   a_tilde_rows_.resize(entries);
   a_tilde_cols_.resize(entries);
@@ -136,7 +139,6 @@ void ThetaDController::reset(const Eigen::VectorXd& x0, double t0) {
   const CareResult care = solve_care(A0_, g0_, settings_.Q, settings_.R);
   T_[0] = care.P;
   g0_scaled_ = g0_ * R_inverse_sqrt_t_;
-  scaled_inputs_.leftCols(g0_.cols()) = g0_scaled_;
   products_[0].leftCols(g0_.cols()).noalias() = T_[0] * g0_scaled_;  // Y0
   Ac0_ = A0_ - g0_scaled_ * products_[0].leftCols(g0_.cols()).transpose();  // Ac0 = A0 − G0 T0
   Ac0_eigenvalues_ = Eigen::EigenSolver<Eigen::MatrixXd>(Ac0_, false).eigenvalues();

@@ -117,11 +117,14 @@ class ThetaDController final : public Controller {
     bool in_basis;         // every nonzero of Ã and g̃ has a slot in basis_: T1 is one product
     bool input_rows_only;  // B has no nonzero outside the input rows: the last term may be partial
   };
-  // Evaluates the SDC into F_, B_ and gathers Ã (a_tilde_*), c of basis_ (coefficients_), g̃ L⁻ᵀ
-  // and Z_[0].
+  // Evaluates the SDC into F_, B_ and gathers Ã (a_tilde_*), c of basis_ (coefficients_), the
+  // scaled inputs on the rows where B can be nonzero (compact_inputs_) and Z_[0].
   template <int N, int M>
   Deviation gather_deviation(const Eigen::Ref<const Eigen::VectorXd>& x,
-                             const Eigen::Ref<const Eigen::VectorXd>& input, LastTerm wanted);
+                             const Eigen::Ref<const Eigen::VectorXd>& input);
+  // [Y_i, Z_i] = T_i [g0 L⁻ᵀ, g̃ L⁻ᵀ] of this pass, from the columns of T_i in product_rows_.
+  template <int N, int M>
+  void form_products(std::size_t i);
   // W_i of term i ≥ 1 from T_0 … T_{i−1}, packed into packed_right_ (through M_).
   template <int N, int M>
   void form_right_side(std::size_t i);
@@ -188,9 +191,15 @@ class ThetaDController final : public Controller {
 
   // Per-step buffers, sized in the constructor or at reset.
   Eigen::MatrixXd F_, B_;
-  // [g0 L⁻ᵀ, g̃ L⁻ᵀ] side by side (n × 2m), so that one product gives Y_i and Z_i below;
-  // S2 = g̃s g̃sᵀ, S1 = g0s g̃sᵀ + g̃s g0sᵀ with g̃s the right half.
-  Eigen::MatrixXd scaled_inputs_;
+  // The rows where this pass's B can be nonzero: input_rows_ when B has no nonzero outside them
+  // (then g0 and g̃ have none either), else all n (every_row_). The products with g0 L⁻ᵀ and
+  // g̃ L⁻ᵀ only read those rows (8 of the helicopter's 18).
+  std::vector<Eigen::Index> every_row_;
+  bool product_rows_are_input_rows_ = false;
+  // [g0 L⁻ᵀ, g̃ L⁻ᵀ] on those k rows, side by side (k × 2m, contiguous), so that one product gives
+  // Y_i and Z_i below; S2 = g̃s g̃sᵀ, S1 = g0s g̃sᵀ + g̃s g0sᵀ with g̃s the right half.
+  Eigen::MatrixXd compact_inputs_;
+  Eigen::MatrixXd product_columns_;  // T_i on those k columns (n × k), the left factor
   // The nonzero coefficients of Ã = F − A0 (~33 of 324 for the helicopter): the first
   // a_tilde_count_ entries of arrays sized n² (sized, not reserved, so that copies keep them).
   std::vector<Eigen::Index> a_tilde_rows_, a_tilde_cols_;

@@ -46,8 +46,7 @@ bool all_zero(const Eigen::MatrixBase<Derived>& a) {
 
 template <int N, int M>
 ThetaDController::Deviation ThetaDController::gather_deviation(const Eigen::Ref<const Eigen::VectorXd>& x,
-                                                                const Eigen::Ref<const Eigen::VectorXd>& input,
-                                                                LastTerm wanted) {
+                                                                const Eigen::Ref<const Eigen::VectorXd>& input) {
   const Eigen::Index n = F_.rows();
   model_->sdc_varying(x, input, F_, B_);
   const auto F = view<N, N>(F_);
@@ -57,8 +56,7 @@ ThetaDController::Deviation ThetaDController::gather_deviation(const Eigen::Ref<
   // vectorised comparison of the entries without one, then c read from its entries alone.
   Deviation deviation{all_zero((F - view<N, N>(A0_)).cwiseProduct(view<N, N>(a_unseen_))) &&
                           all_zero((B - view<N, M>(g0_)).cwiseProduct(view<N, M>(g_unseen_))),
-                      wanted != LastTerm::full && T_.size() > 1 &&
-                          all_zero(B.cwiseProduct(view<N, M>(outside_input_rows_)))};
+                      all_zero(B.cwiseProduct(view<N, M>(outside_input_rows_)))};
   a_tilde_count_ = 0;
   auto add_a_tilde = [&](Eigen::Index entry, double value) {
     a_tilde_rows_[a_tilde_count_] = entry % n;
@@ -81,12 +79,34 @@ ThetaDController::Deviation ThetaDController::gather_deviation(const Eigen::Ref<
       if (value != 0.0) add_a_tilde(entry, value);
     }
   }
-  const Eigen::Index m = B_.cols();
-  auto g_tilde_scaled = view<N, twice(M)>(scaled_inputs_).template rightCols<M>(m);
-  g_tilde_scaled.noalias() = B * view<M, M>(R_inverse_sqrt_t_);
-  g_tilde_scaled -= view<N, M>(g0_scaled_);
-  view<N, twice(M)>(products_[0]).template rightCols<M>(m).noalias() = view<N, N>(T_[0]) * g_tilde_scaled;  // Z0
+  if (T_.size() == 1) return deviation;
+  product_rows_are_input_rows_ = deviation.input_rows_only;
+  const std::vector<Eigen::Index>& rows = product_rows_are_input_rows_ ? input_rows_ : every_row_;
+  const Eigen::Index m = B_.cols(), k = static_cast<Eigen::Index>(rows.size());
+  Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, twice(M)>> compact(compact_inputs_.data(), k, 2 * m);
+  const auto g0_scaled = view<N, M>(g0_scaled_);
+  for (Eigen::Index a = 0; a < k; ++a) {
+    const Eigen::Index r = rows[static_cast<std::size_t>(a)];
+    compact.row(a).template segment<M>(0, m) = g0_scaled.row(r);
+    compact.row(a).template segment<M>(m, m).noalias() = B.row(r) * view<M, M>(R_inverse_sqrt_t_);
+    compact.row(a).template segment<M>(m, m) -= g0_scaled.row(r);
+  }
+  form_products<N, M>(0);
   return deviation;
+}
+
+template <int N, int M>
+void ThetaDController::form_products(std::size_t i) {
+  const std::vector<Eigen::Index>& rows = product_rows_are_input_rows_ ? input_rows_ : every_row_;
+  const Eigen::Index m = B_.cols(), k = static_cast<Eigen::Index>(rows.size());
+  const auto term = view<N, N>(T_[i]);
+  auto columns = view<N, Eigen::Dynamic>(product_columns_).leftCols(k);
+  for (Eigen::Index a = 0; a < k; ++a) columns.col(a) = term.col(rows[static_cast<std::size_t>(a)]);
+  const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, twice(M)>> compact(compact_inputs_.data(), k, 2 * m);
+  auto products = view<N, twice(M)>(products_[i]);
+  // Y0 is the constant of reset(); a pass forms Z0 only.
+  if (i == 0) products.template rightCols<M>(m).noalias() = columns * compact.template rightCols<M>(m);
+  else products.noalias() = columns * compact;
 }
 
 template <int N, int M>
@@ -128,7 +148,7 @@ ThetaDController::LastTerm ThetaDController::evaluate_series(const Eigen::Ref<co
                                                              const Eigen::Ref<const Eigen::VectorXd>& input, double t,
                                                              LastTerm wanted, bool later_pass) {
   const Eigen::Index n = F_.rows(), unknowns = n * (n + 1) / 2;
-  const Deviation deviation = gather_deviation<N, M>(x, input, wanted);
+  const Deviation deviation = gather_deviation<N, M>(x, input);
   if (!deviation.in_basis) first_term_current_ = false;
   for (std::size_t i = 1; i < T_.size(); ++i) {
     const bool last_term = i + 1 == T_.size();
@@ -169,9 +189,9 @@ ThetaDController::LastTerm ThetaDController::evaluate_series(const Eigen::Ref<co
     }
     if (last_term) break;  // Y, Z of the last term enter no W
     const Eigen::Index m = B_.cols();
-    auto products = view<N, twice(M)>(products_[i]);
-    products.noalias() = term * view<N, twice(M)>(scaled_inputs_);
-    view<N, M>(pairs_[i]) = products.template leftCols<M>(m) + view<N, twice(M)>(products_[i - 1]).template rightCols<M>(m);
+    form_products<N, M>(i);
+    view<N, M>(pairs_[i]) = view<N, twice(M)>(products_[i]).template leftCols<M>(m) +
+                            view<N, twice(M)>(products_[i - 1]).template rightCols<M>(m);
   }
   return LastTerm::full;
 }

@@ -7,13 +7,13 @@
 #include <sstream>
 #include <string>
 
-#include <Eigen/Cholesky>
 #include <gtest/gtest.h>
 
 #include "controllers/theta_d.hpp"
 #include "core/helicopter/helicopter.hpp"
 #include "tests/controllers/every_pass_settings.hpp"
 #include "tests/controllers/scenario_one_flight.hpp"
+#include "tests/controllers/theta_d_reference_law.hpp"
 
 namespace thetad {
 namespace {
@@ -52,17 +52,6 @@ TEST(ThetaDFixedSize, SameControlAsTheDynamicSizePathOnScenarioOneStates) {
   }
 }
 
-// Eq. (35) on the written-out series: u = −R⁻¹ Bᵀ(x; guess) ΣT_i(x; guess, t) v.
-VectorXd reference_law(ThetaDController& controller, const SdcPlant& model, const VectorXd& x, const VectorXd& guess,
-                       const VectorXd& v, double t) {
-  const ThetaDSettings& s = controller.settings();
-  VectorXd e(s.terms - 1);
-  for (Eigen::Index i = 0; i < e.size(); ++i) e[i] = perturbation_factor(s.k[i], s.l[i], t - controller.start_time());
-  const MatrixXd P = controller.series_expansion(x, guess).evaluate(e);
-  const MatrixXd B = model.sdc(x, guess).B;
-  return -s.R.llt().solve(B.transpose() * (P * v));
-}
-
 TEST(ThetaDReference, ControlEqualsTheWrittenOutSeriesOnScenarioOneStates) {
   const auto& flight = testing::scenario_one_flight();
   for (const int passes : {1, 3}) {
@@ -76,9 +65,8 @@ TEST(ThetaDReference, ControlEqualsTheWrittenOutSeriesOnScenarioOneStates) {
       // Every third state: the written-out series solves five Lyapunov equations per pass.
       if (k % 3 == 0) {
         flight.model.tracking_vector(sample.state, sample.reference, v);
-        VectorXd expected = previous;  // spec §7.6: the fixed point starts from the last input
-        for (int pass = 0; pass < passes; ++pass)
-          expected = reference_law(controller, flight.model, sample.state, expected, v, sample.t);
+        const VectorXd expected =
+            testing::reference_control(controller, flight.model, sample.state, previous, v, sample.t, passes);
         worst = std::max(worst, (u - expected).norm() / expected.norm());
       }
       previous = u;
