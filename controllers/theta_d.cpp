@@ -215,24 +215,41 @@ void ThetaDController::order_unknowns() {
   }
   // packed_inverse() solves Ac'X + XAc + Q = 0, i.e. X = L⁻¹(−Q).
   lyapunov_inverse_.resize(unknowns, unknowns);
-  for (Eigen::Index b = 0; b < unknowns; ++b) {
-    const Eigen::Index from_b = ConstantLyapunovSolver::packed_index(unknown_row_[b], unknown_col_[b]);
-    for (Eigen::Index a = 0; a < unknowns; ++a)
-      lyapunov_inverse_(a, b) =
-          -lyapunov_->packed_inverse()(ConstantLyapunovSolver::packed_index(unknown_row_[a], unknown_col_[a]), from_b);
+  auto fill_inverse = [&] {
+    for (Eigen::Index b = 0; b < unknowns; ++b) {
+      const Eigen::Index from_b = ConstantLyapunovSolver::packed_index(unknown_row_[b], unknown_col_[b]);
+      for (Eigen::Index a = 0; a < unknowns; ++a)
+        lyapunov_inverse_(a, b) =
+            -lyapunov_->packed_inverse()(ConstantLyapunovSolver::packed_index(unknown_row_[a], unknown_col_[a]), from_b);
+    }
+  };
+  fill_inverse();
+  // Then the unknowns of the input rows grouped by the exact zeros of their rows of L⁻¹, so that
+  // the partial solve multiplies only the nonzero blocks (last_term_).
+  const std::vector<Eigen::Index> grouped =
+      ZeroPatternProduct::group_rows_by_pattern(lyapunov_inverse_.topRows(input_row_unknowns_));
+  const std::vector<Eigen::Index> rows(unknown_row_), cols(unknown_col_);
+  for (std::size_t k = 0; k < grouped.size(); ++k) {
+    unknown_row_[k] = rows[static_cast<std::size_t>(grouped[k])];
+    unknown_col_[k] = cols[static_cast<std::size_t>(grouped[k])];
   }
+  fill_inverse();
+  last_term_ = ZeroPatternProduct(lyapunov_inverse_.topRows(input_row_unknowns_));
 }
 
 void ThetaDController::prepare_projections() {
   const Eigen::Index n = A0_.rows(), unknowns = n * (n + 1) / 2;
   // The projections pay when the fixed point may take several passes (spec §7.6) and their set-up
-  // per step, rows·n per unknown, costs less than the partial solves they replace.
+  // per step, rows·n per unknown, costs less than the partial solves they replace. Those multiply
+  // only last_term_'s stored entries but cost about 1.4 times as much per entry as the dense
+  // products (a gather and a call per block; measured on the helicopter, docs/performance.md).
   input_rows_.clear();
   for (Eigen::Index r = 0; r < n; ++r)
     if (input_row_[static_cast<std::size_t>(r)]) input_rows_.push_back(r);
   const auto rows = static_cast<Eigen::Index>(input_rows_.size());
   const int passes = model_->sdc_depends_on_input() ? settings_.fixed_point_iterations : 1;
-  project_last_term_ = settings_.terms >= 3 && passes > 1 && rows * (n + passes) < passes * input_row_unknowns_;
+  project_last_term_ = settings_.terms >= 3 && passes > 1 &&
+                      10 * rows * (n + passes) * unknowns < 14 * passes * last_term_.stored_entries();
   if (!project_last_term_) return;
   std::vector<Eigen::Index> position(static_cast<std::size_t>(n * n));
   for (Eigen::Index a = 0; a < unknowns; ++a) {

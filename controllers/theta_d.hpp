@@ -21,6 +21,7 @@
 #include "controllers/theta_d_series.hpp"
 #include "core/lyapunov.hpp"
 #include "core/sdc_plant.hpp"
+#include "core/zero_pattern_product.hpp"
 
 namespace thetad {
 
@@ -164,11 +165,14 @@ class ThetaDController final : public Controller {
   Eigen::Index input_row_unknowns_ = 0;
   std::vector<char> input_row_;
   Eigen::MatrixXd lyapunov_inverse_;  // L⁻¹ on the unknowns in that order: T = L⁻¹ W
+  // Its first input_row_unknowns_ rows without their exact zeros (the input-row unknowns come
+  // grouped by zero pattern): the last term on the input rows.
+  ZeroPatternProduct last_term_;
   // (T v)(r) = Σ_j v_j T(r, j) is, for each input row r, one fixed linear form of pack(W). With
   // several fixed-point passes on one v, control() forms these forms once, projections_.col(k) =
   // row_solutions_.middleCols(k n, n) · v (column k n + j: the row of L⁻¹ giving T(r_k, j)), and
   // each pass reads the last term on the input rows as projections_ᵀ pack(W): ~rows·n(n+1)
-  // flops instead of a solve on input_row_unknowns_ rows. Only set up when that is cheaper.
+  // flops instead of the partial solve (last_term_). Only set up when that is cheaper.
   std::vector<Eigen::Index> input_rows_;
   bool project_last_term_ = false;
   Eigen::MatrixXd row_solutions_, projections_;

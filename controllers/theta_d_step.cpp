@@ -178,7 +178,8 @@ ThetaDController::LastTerm ThetaDController::evaluate_series(const Eigen::Ref<co
         last_products_.noalias() = e * (projections_.transpose() * packed_right_);
         return form;
       }
-      packed_term_.head(solved).noalias() = e * (lyapunov_inverse_.topRows(solved) * packed_right_);
+      if (form == LastTerm::input_rows) last_term_.apply(e, packed_right_, packed_term_.head(solved));
+      else packed_term_.noalias() = e * (lyapunov_inverse_ * packed_right_);
     }
     if (form == LastTerm::input_rows) return form;
     auto term = view<N, N>(T_[i]);

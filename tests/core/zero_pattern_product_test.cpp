@@ -1,0 +1,84 @@
+#include "core/zero_pattern_product.hpp"
+
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "core/error.hpp"
+#include "tests/heap_counter.hpp"
+
+namespace thetad {
+namespace {
+
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+
+// 40 rows in 4 interleaved zero patterns over 30 columns (one of them: the whole row zero), the
+// nonzeros drawn at random: the shape of the rows of a reducible Lyapunov inverse.
+MatrixXd patterned_matrix() {
+  std::mt19937_64 generator(3);
+  std::normal_distribution<double> normal;
+  MatrixXd M = MatrixXd::Zero(40, 30);
+  for (Eigen::Index i = 0; i < M.rows(); ++i)
+    for (Eigen::Index j = 0; j < M.cols(); ++j) {
+      const bool nonzero = i % 4 == 0 ? j < 20 : i % 4 == 1 ? j % 3 == 0 : i % 4 == 2 ? j >= 12 : false;
+      if (nonzero) M(i, j) = normal(generator);
+    }
+  return M;
+}
+
+MatrixXd rows_in_order(const MatrixXd& M, const std::vector<Eigen::Index>& order) {
+  MatrixXd sorted(M.rows(), M.cols());
+  for (std::size_t k = 0; k < order.size(); ++k) sorted.row(static_cast<Eigen::Index>(k)) = M.row(order[k]);
+  return sorted;
+}
+
+TEST(ZeroPatternProduct, GroupsTheRowsOfAPatternInTheOrderOfTheirFirstRow) {
+  const std::vector<Eigen::Index> order = ZeroPatternProduct::group_rows_by_pattern(patterned_matrix());
+  ASSERT_EQ(order.size(), 40u);
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    EXPECT_EQ(order[k] % 4, static_cast<Eigen::Index>(k / 10)) << k;           // pattern by pattern
+    EXPECT_EQ(order[k] / 4, static_cast<Eigen::Index>(k % 10)) << k;           // stable within one
+  }
+}
+
+TEST(ZeroPatternProduct, MultipliesOnlyTheNonzerosAndGivesTheDenseProduct) {
+  const MatrixXd M = patterned_matrix();
+  const MatrixXd sorted = rows_in_order(M, ZeroPatternProduct::group_rows_by_pattern(M));
+  ZeroPatternProduct product(sorted);
+  EXPECT_EQ(product.rows(), 40);
+  EXPECT_EQ(product.cols(), 30);
+  EXPECT_EQ(product.stored_entries(), 10 * 20 + 10 * 10 + 10 * 18);  // the zero rows store nothing
+  const VectorXd x = VectorXd::LinSpaced(30, -1.0, 2.0);
+  VectorXd y = VectorXd::Constant(40, 7.0);  // every entry written, the zero rows too
+  product.apply(-0.5, x, y);
+  const VectorXd expected = -0.5 * (sorted * x);
+  EXPECT_LE((y - expected).cwiseAbs().maxCoeff(), 1e-15 * expected.cwiseAbs().maxCoeff());
+  EXPECT_EQ(y.tail(10), VectorXd::Zero(10));
+}
+
+TEST(ZeroPatternProduct, AMatrixWithoutZerosIsOneDenseBlock) {
+  const MatrixXd M = MatrixXd::Random(7, 5);
+  ZeroPatternProduct product(M);
+  EXPECT_EQ(product.stored_entries(), 35);
+  const VectorXd x = VectorXd::Random(5);
+  VectorXd y(7);
+  product.apply(2.0, x, y);
+  EXPECT_LE((y - 2.0 * M * x).norm(), 1e-14 * (M * x).norm());
+}
+
+TEST(ZeroPatternProduct, AllocatesNothingPerProductAndRefusesWrongSizes) {
+  const MatrixXd M = patterned_matrix();
+  ZeroPatternProduct product(rows_in_order(M, ZeroPatternProduct::group_rows_by_pattern(M)));
+  const VectorXd x = VectorXd::Ones(30);
+  VectorXd y(40);
+  const long allocations = testing::heap_allocations_during([&] { product.apply(1.0, x, y); });
+  if (allocations < 0) GTEST_SKIP() << "malloc cannot be interposed in this build (AddressSanitizer)";
+  EXPECT_EQ(allocations, 0);
+  VectorXd short_y(39);
+  EXPECT_THROW(product.apply(1.0, x, short_y), Error);
+}
+
+}  // namespace
+}  // namespace thetad
