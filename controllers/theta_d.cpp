@@ -256,13 +256,30 @@ void ThetaDController::prepare_projections() {
     position[static_cast<std::size_t>(unknown_row_[a] * n + unknown_col_[a])] = a;
     position[static_cast<std::size_t>(unknown_col_[a] * n + unknown_row_[a])] = a;
   }
-  row_solutions_.resize(unknowns, rows * n);
-  for (Eigen::Index k = 0; k < rows; ++k)
+  // Form k is zero outside its support, the unknowns of W where one of its n rows of L⁻¹ is
+  // nonzero: row_solutions_ holds the forms' supports one after the other.
+  projection_support_.clear();
+  projection_offsets_.assign(1, 0);
+  std::vector<Eigen::Index> solution_rows;  // row of L⁻¹ for T(r_k, j), per form and j
+  for (Eigen::Index k = 0; k < rows; ++k) {
     for (Eigen::Index j = 0; j < n; ++j)
-      row_solutions_.col(k * n + j) =
-          lyapunov_inverse_.row(position[static_cast<std::size_t>(input_rows_[static_cast<std::size_t>(k)] * n + j)])
-              .transpose();
-  projections_.resize(unknowns, rows);
+      solution_rows.push_back(position[static_cast<std::size_t>(input_rows_[static_cast<std::size_t>(k)] * n + j)]);
+    for (Eigen::Index b = 0; b < unknowns; ++b)
+      for (Eigen::Index j = 0; j < n; ++j)
+        if (lyapunov_inverse_(solution_rows[static_cast<std::size_t>(k * n + j)], b) != 0.0) {
+          projection_support_.push_back(b);
+          break;
+        }
+    projection_offsets_.push_back(static_cast<Eigen::Index>(projection_support_.size()));
+  }
+  row_solutions_.resize(static_cast<Eigen::Index>(projection_support_.size()), n);
+  for (Eigen::Index k = 0; k < rows; ++k)
+    for (Eigen::Index s = projection_offsets_[static_cast<std::size_t>(k)]; s < projection_offsets_[static_cast<std::size_t>(k + 1)]; ++s)
+      for (Eigen::Index j = 0; j < n; ++j)
+        row_solutions_(s, j) = lyapunov_inverse_(solution_rows[static_cast<std::size_t>(k * n + j)],
+                                                 projection_support_[static_cast<std::size_t>(s)]);
+  supported_projections_.resize(row_solutions_.rows());
+  projections_ = Eigen::MatrixXd::Zero(unknowns, rows);  // the entries off the supports stay zero
   last_products_.resize(rows);
 }
 

@@ -169,13 +169,17 @@ class ThetaDController final : public Controller {
   // grouped by zero pattern): the last term on the input rows.
   ZeroPatternProduct last_term_;
   // (T v)(r) = Σ_j v_j T(r, j) is, for each input row r, one fixed linear form of pack(W). With
-  // several fixed-point passes on one v, control() forms these forms once, projections_.col(k) =
-  // row_solutions_.middleCols(k n, n) · v (column k n + j: the row of L⁻¹ giving T(r_k, j)), and
-  // each pass reads the last term on the input rows as projections_ᵀ pack(W): ~rows·n(n+1)
-  // flops instead of the partial solve (last_term_). Only set up when that is cheaper.
+  // several fixed-point passes on one v, control() forms these forms once, projections_.col(k)
+  // (column k: T(r_k, ·) v), and each pass reads the last term on the input rows as
+  // projections_ᵀ pack(W): ~rows·n(n+1) flops instead of the partial solve (last_term_). Only set
+  // up when that is cheaper. Form k is nonzero only on its support, projection_support_[s] for s
+  // in [projection_offsets_[k], projection_offsets_[k + 1]); there it is row_solutions_ · v, row s
+  // holding, for j < n, the entry at that support of the row of L⁻¹ that gives T(r_k, j).
   std::vector<Eigen::Index> input_rows_;
   bool project_last_term_ = false;
+  std::vector<Eigen::Index> projection_support_, projection_offsets_;
   Eigen::MatrixXd row_solutions_, projections_;
+  Eigen::VectorXd supported_projections_;
   Eigen::VectorXd last_products_;
   // T1 is linear in the coefficients of Ã and g̃ (Eq. 22b). For the K coefficients seen to vary
   // at reset (~33 for the helicopter), T1 = e1 · basis_ · c, basis_ holding T1 for each unit

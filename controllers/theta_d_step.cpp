@@ -226,13 +226,16 @@ void ThetaDController::run_passes(double t, const Eigen::Ref<const Eigen::Vector
   // One pass is exact when the SDC does not depend on the input.
   const int passes = model_->sdc_depends_on_input() ? settings_.fixed_point_iterations : 1;
   const LastTerm wanted = project_last_term_ ? LastTerm::input_row_products : LastTerm::input_rows;
-  const Eigen::Index n = v_.size();
   const auto v = view<N>(v_);
   // What every pass shares: v, hence T0 v and the forms that give the last term on the input rows.
   view<N>(T0_v_).noalias() = view<N, N>(T_[0]) * v;
-  for (std::size_t k = 0; project_last_term_ && k < input_rows_.size(); ++k)
-    projections_.col(static_cast<Eigen::Index>(k)).noalias() =
-        row_solutions_.middleCols(static_cast<Eigen::Index>(k) * n, n) * v_;
+  if (project_last_term_) {
+    supported_projections_.noalias() = row_solutions_ * v_;
+    for (std::size_t k = 0; k < input_rows_.size(); ++k)
+      for (Eigen::Index s = projection_offsets_[k]; s < projection_offsets_[k + 1]; ++s)
+        projections_(projection_support_[static_cast<std::size_t>(s)], static_cast<Eigen::Index>(k)) =
+            supported_projections_[s];
+  }
   auto value_gradient = view<N>(value_gradient_);
   for (last_iterations_ = 1;; ++last_iterations_) {
     const LastTerm formed = evaluate_series<N, M>(x, guess_, t, wanted, last_iterations_ > 1);
