@@ -89,7 +89,6 @@ ThetaDController::ThetaDController(const SdcPlant& model, ThetaDSettings setting
   F_.resize(n, n);
   B_.resize(n, m);
   for (Eigen::Index r = 0; r < n; ++r) every_row_.push_back(r);
-  input_rows_ = every_row_;
   compact_inputs_.resize(n, 2 * m);
   product_columns_.resize(n, n);
   const auto entries = static_cast<std::size_t>(n * n);
@@ -239,18 +238,10 @@ void ThetaDController::order_unknowns() {
 
 void ThetaDController::prepare_projections() {
   const Eigen::Index n = A0_.rows(), unknowns = n * (n + 1) / 2;
-  // The projections pay when the fixed point may take several passes (spec §7.6) and their set-up
-  // per step, rows·n per unknown, costs less than the partial solves they replace. Those multiply
-  // only last_term_'s stored entries but cost about 1.4 times as much per entry as the dense
-  // products (a gather and a call per block; measured on the helicopter, docs/performance.md).
   input_rows_.clear();
   for (Eigen::Index r = 0; r < n; ++r)
     if (input_row_[static_cast<std::size_t>(r)]) input_rows_.push_back(r);
   const auto rows = static_cast<Eigen::Index>(input_rows_.size());
-  const int passes = model_->sdc_depends_on_input() ? settings_.fixed_point_iterations : 1;
-  project_last_term_ = settings_.terms >= 3 && passes > 1 &&
-                      10 * rows * (n + passes) * unknowns < 14 * passes * last_term_.stored_entries();
-  if (!project_last_term_) return;
   std::vector<Eigen::Index> position(static_cast<std::size_t>(n * n));
   for (Eigen::Index a = 0; a < unknowns; ++a) {
     position[static_cast<std::size_t>(unknown_row_[a] * n + unknown_col_[a])] = a;
@@ -272,13 +263,23 @@ void ThetaDController::prepare_projections() {
         }
     projection_offsets_.push_back(static_cast<Eigen::Index>(projection_support_.size()));
   }
-  row_solutions_.resize(static_cast<Eigen::Index>(projection_support_.size()), n);
+  // The projections pay when the fixed point may take several passes (spec §7.6) and their set-up
+  // per step, n per entry of the supports, and their dense products per pass cost less than the
+  // partial solves they replace. Those multiply only last_term_'s stored entries but cost about
+  // 1.4 times as much per entry as a dense product (a gather and a call per block; measured on
+  // the helicopter, docs/performance.md).
+  const auto support = static_cast<Eigen::Index>(projection_support_.size());
+  const auto passes = static_cast<Eigen::Index>(model_->sdc_depends_on_input() ? settings_.fixed_point_iterations : 1);
+  project_last_term_ = settings_.terms >= 3 && passes > 1 &&
+                      10 * (support * n + passes * rows * unknowns) < 14 * passes * last_term_.stored_entries();
+  if (!project_last_term_) return;
+  row_solutions_.resize(support, n);
   for (Eigen::Index k = 0; k < rows; ++k)
     for (Eigen::Index s = projection_offsets_[static_cast<std::size_t>(k)]; s < projection_offsets_[static_cast<std::size_t>(k + 1)]; ++s)
       for (Eigen::Index j = 0; j < n; ++j)
         row_solutions_(s, j) = lyapunov_inverse_(solution_rows[static_cast<std::size_t>(k * n + j)],
                                                  projection_support_[static_cast<std::size_t>(s)]);
-  supported_projections_.resize(row_solutions_.rows());
+  supported_projections_.resize(support);
   projections_ = Eigen::MatrixXd::Zero(unknowns, rows);  // the entries off the supports stay zero
   last_products_.resize(rows);
 }

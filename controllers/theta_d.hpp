@@ -123,7 +123,7 @@ class ThetaDController final : public Controller {
   template <int N, int M>
   Deviation gather_deviation(const Eigen::Ref<const Eigen::VectorXd>& x,
                              const Eigen::Ref<const Eigen::VectorXd>& input);
-  // [Y_i, Z_i] = T_i [g0 L⁻ᵀ, g̃ L⁻ᵀ] of this pass, from the columns of T_i in product_rows_.
+  // [Y_i, Z_i] = T_i [g0 L⁻ᵀ, g̃ L⁻ᵀ] of this pass, from the columns of T_i in product_rows().
   template <int N, int M>
   void form_products(std::size_t i);
   // W_i of term i ≥ 1 from T_0 … T_{i−1}, packed into packed_right_ (through M_).
@@ -141,7 +141,8 @@ class ThetaDController final : public Controller {
     std::vector<char> a_varies, g_varies, input_row;
   };
   SdcPattern probe_sdc(const Eigen::VectorXd& x0);
-  // unknown_row_, unknown_col_, input_row_unknowns_ and lyapunov_inverse_ from input_row_.
+  // unknown_row_, unknown_col_, input_row_unknowns_, lyapunov_inverse_ and last_term_ from
+  // input_row_ (the input-row unknowns grouped by the zero pattern of their rows of L⁻¹).
   void order_unknowns();
   // input_rows_ and, where they pay, the projections of the last term (see projections_).
   void prepare_projections();
@@ -204,8 +205,12 @@ class ThetaDController final : public Controller {
   // g̃ L⁻ᵀ only read those rows (8 of the helicopter's 18).
   std::vector<Eigen::Index> every_row_;
   bool product_rows_are_input_rows_ = false;
-  // [g0 L⁻ᵀ, g̃ L⁻ᵀ] on those k rows, side by side (k × 2m, contiguous), so that one product gives
-  // Y_i and Z_i below; S2 = g̃s g̃sᵀ, S1 = g0s g̃sᵀ + g̃s g0sᵀ with g̃s the right half.
+  const std::vector<Eigen::Index>& product_rows() const {
+    return product_rows_are_input_rows_ ? input_rows_ : every_row_;
+  }
+  // [g0 L⁻ᵀ, g̃ L⁻ᵀ] on those k rows, side by side (k × 2m), so that one product gives Y_i and Z_i
+  // below; S2 = g̃s g̃sᵀ, S1 = g0s g̃sᵀ + g̃s g0sᵀ with g̃s the right half. Storage for up to
+  // n × 2m entries, read as a contiguous k × 2m matrix.
   Eigen::MatrixXd compact_inputs_;
   Eigen::MatrixXd product_columns_;  // T_i on those k columns (n × k), the left factor
   // The nonzero coefficients of Ã = F − A0 (~33 of 324 for the helicopter): the first

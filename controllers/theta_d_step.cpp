@@ -81,7 +81,7 @@ ThetaDController::Deviation ThetaDController::gather_deviation(const Eigen::Ref<
   }
   if (T_.size() == 1) return deviation;
   product_rows_are_input_rows_ = deviation.input_rows_only;
-  const std::vector<Eigen::Index>& rows = product_rows_are_input_rows_ ? input_rows_ : every_row_;
+  const std::vector<Eigen::Index>& rows = product_rows();
   const Eigen::Index m = B_.cols(), k = static_cast<Eigen::Index>(rows.size());
   Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, twice(M)>> compact(compact_inputs_.data(), k, 2 * m);
   const auto g0_scaled = view<N, M>(g0_scaled_);
@@ -97,7 +97,7 @@ ThetaDController::Deviation ThetaDController::gather_deviation(const Eigen::Ref<
 
 template <int N, int M>
 void ThetaDController::form_products(std::size_t i) {
-  const std::vector<Eigen::Index>& rows = product_rows_are_input_rows_ ? input_rows_ : every_row_;
+  const std::vector<Eigen::Index>& rows = product_rows();
   const Eigen::Index m = B_.cols(), k = static_cast<Eigen::Index>(rows.size());
   const auto term = view<N, N>(T_[i]);
   auto columns = view<N, Eigen::Dynamic>(product_columns_).leftCols(k);

@@ -1,11 +1,11 @@
 #pragma once
 
 // y = α M x for a dense matrix M with many entries that are exactly zero in a few recurring row
-// patterns, as the rows of the packed Lyapunov inverse that θ–D needs for the helicopter (when
-// Ac is reducible, whole blocks of the inverse are zero: 62 % of the entries at the paper's Ac0,
-// and its 116 rows on the input rows fall into 10 patterns). Rows that share a pattern form one
-// dense block over their nonzero columns, so a product reads and multiplies only those. Exact:
-// only entries that are exactly 0.0 are left out; a matrix without zeros is one block.
+// patterns, as the packed inverse of a Lyapunov operator whose Ac is reducible (whole blocks of
+// the inverse are zero; θ–D's rows of it for the helicopter, docs/performance.md). Rows that share
+// a pattern form one dense block over their nonzero columns, so a product reads and multiplies
+// only those. For finite x the result is the dense product's up to the order of the sums: only
+// entries that are exactly 0.0 are left out (0 · Inf would be NaN). Without zeros: one block.
 
 #include <cstddef>
 #include <vector>

@@ -1,8 +1,11 @@
 // The θ–D step off the pattern reset() probed: a plant whose coefficients near x0 vary in a few
 // entries and whose B is zero outside 8 of 18 rows, but which far from x0 grows new coefficients
-// in F and a nonzero of B outside those rows. control() must then leave its shortcuts (the T1
-// basis, the products on the input rows only, the last term on those rows) for that pass and
-// still give the u of the written-out series, on the helicopter's fixed sizes and on dynamic ones.
+// in F, or a nonzero of B outside those rows, or both. control() must then leave its shortcuts
+// (the T1 basis, the products on the input rows only, the last term on those rows) for that pass
+// and still give the u of the written-out series, on the helicopter's fixed sizes and on dynamic
+// ones. The plant's A is block triangular, as the helicopter's closed loop is reducible, so that
+// the Lyapunov inverse has exact zeros and the step's blocks and supports (ZeroPatternProduct,
+// the projections on their supports) are exercised too.
 #include <algorithm>
 #include <cmath>
 #include <random>
@@ -13,6 +16,7 @@
 #include "controllers/theta_d.hpp"
 #include "core/sdc_plant.hpp"
 #include "tests/controllers/theta_d_reference_law.hpp"
+#include "tests/heap_counter.hpp"
 
 namespace thetad {
 namespace {
@@ -22,9 +26,10 @@ using Eigen::VectorXd;
 
 constexpr int kStates = 18, kInputs = 5, kFirstInputRow = 10;
 
-// F(x; u) = A + x0 C + tanh(u0) H + d(x) E,  B(x) = G + x1 K + d(x) e0 e2ᵀ,  d(x) = max(0, |x2| − 1)²:
+// F(x; u) = A + x0 C + tanh(u0) H + d(x2) E,  B(x) = G + x1 K + d(x3) e0 e2ᵀ,  d(s) = max(0, |s| − 1)²:
 // G and K live in rows 10 … 17 only, C, H and E are sparse with disjoint patterns, and d vanishes
-// within |x2| ≤ 1, where reset() probes (x0 = 0).
+// within |s| ≤ 1, where reset() probes (x0 = 0). A has no entry from states 10 … 17 into rows
+// 0 … 9, whose own block is stable (they are not controllable: the CARE needs them stable).
 class LatePatternPlant final : public SdcPlant {
  public:
   LatePatternPlant() : A_(kStates, kStates), C_(MatrixXd::Zero(kStates, kStates)), H_(C_), E_(C_),
@@ -32,6 +37,8 @@ class LatePatternPlant final : public SdcPlant {
     std::mt19937_64 generator(5);
     std::normal_distribution<double> normal(0.0, 1.0);
     for (Eigen::Index j = 0; j < A_.size(); ++j) A_.data()[j] = normal(generator) / std::sqrt(double(kStates));
+    A_.topRightCorner(kFirstInputRow, kStates - kFirstInputRow).setZero();
+    A_.topLeftCorner(kFirstInputRow, kFirstInputRow).diagonal().array() -= 2.0;
     for (Eigen::Index r = kFirstInputRow; r < kStates; ++r)
       for (Eigen::Index c = 0; c < kInputs; ++c) G_(r, c) = normal(generator);
     for (int k = 0; k < 6; ++k) {
@@ -55,13 +62,14 @@ class LatePatternPlant final : public SdcPlant {
   }
   void sdc(const Eigen::Ref<const VectorXd>& x, const Eigen::Ref<const VectorXd>& u, Eigen::Ref<MatrixXd> F,
            Eigen::Ref<MatrixXd> B) const override {
-    const double late = std::pow(std::max(0.0, std::abs(x[2]) - 1.0), 2);
-    F = A_ + x[0] * C_ + std::tanh(u[0]) * H_ + late * E_;
+    F = A_ + x[0] * C_ + std::tanh(u[0]) * H_ + late(x[2]) * E_;
     B = G_ + x[1] * K_;
-    B(0, 2) = late;
+    B(0, 2) = late(x[3]);
   }
 
  private:
+  static double late(double s) { return std::pow(std::max(0.0, std::abs(s) - 1.0), 2); }
+
   MatrixXd A_, C_, H_, E_, G_, K_;
 };
 
@@ -77,12 +85,13 @@ ThetaDSettings every_pass(int passes, bool fixed_size) {
 
 TEST(ThetaDOffThePattern, ControlEqualsTheWrittenOutSeriesOnAndOffThePattern) {
   const LatePatternPlant plant;
-  // Alternating states on the probed pattern (|x2| < 1) and off it (|x2| > 1), so that passes leave
-  // and rejoin the shortcuts, with T1 carried over between passes and steps.
+  // States on the probed pattern and off it in F only (|x2| > 1), in B only (|x3| > 1) and in
+  // both, in turn, so that steps leave and rejoin the shortcuts with T1 carried over between them.
   std::vector<VectorXd> states;
-  for (int k = 0; k < 8; ++k) {
+  for (int k = 0; k < 12; ++k) {
     VectorXd x = VectorXd::LinSpaced(kStates, -0.2, 0.3) * (1.0 + 0.1 * k);
-    x[2] = k % 2 == 0 ? 0.4 : 1.3 + 0.1 * k;
+    x[2] = k % 4 == 1 || k % 4 == 3 ? 1.3 + 0.1 * k : 0.4;
+    x[3] = k % 4 >= 2 ? -1.2 - 0.1 * k : -0.3;
     states.push_back(x);
   }
   const Reference reference;
@@ -97,11 +106,31 @@ TEST(ThetaDOffThePattern, ControlEqualsTheWrittenOutSeriesOnAndOffThePattern) {
         plant.tracking_vector(states[k], reference, v);
         const VectorXd expected = testing::reference_control(controller, plant, states[k], previous, v, t, passes);
         EXPECT_LE((u - expected).norm(), 1e-12 * expected.norm())
-            << "state " << k << (k % 2 == 0 ? " (on" : " (off") << " the pattern), " << passes << " passes, "
-            << (fixed_size ? "fixed" : "dynamic") << " size";
+            << "state " << k << " (" << (k % 4 == 0 ? "on the pattern" : k % 4 == 1 ? "F off it" : k % 4 == 2 ? "B off it" : "both off it")
+            << "), " << passes << " passes, " << (fixed_size ? "fixed" : "dynamic") << " size";
         previous = u;
       }
     }
+}
+
+TEST(ThetaDOffThePattern, ControlAllocatesNothingOnAndOffThePattern) {
+  const LatePatternPlant plant;
+  VectorXd on = VectorXd::Constant(kStates, 0.1), off = on;
+  off[2] = 1.5;
+  off[3] = -1.4;
+  VectorXd u(kInputs);
+  const Reference reference;
+  for (const int passes : {1, 3}) {  // the blocks of the last term; the projections
+    ThetaDController controller(plant, every_pass(passes, true));
+    controller.reset(VectorXd::Zero(kStates), 0.0);
+    controller.control(0.0, on, reference, u);
+    const long allocations = testing::heap_allocations_during([&] {
+      controller.control(0.01, on, reference, u);
+      controller.control(0.02, off, reference, u);
+    });
+    if (allocations < 0) GTEST_SKIP() << "malloc cannot be interposed in this build (AddressSanitizer)";
+    EXPECT_EQ(allocations, 0) << passes << " passes";
+  }
 }
 
 TEST(ThetaDOffThePattern, TheValueMatrixEqualsTheWrittenOutSeriesOffThePattern) {
@@ -111,6 +140,7 @@ TEST(ThetaDOffThePattern, TheValueMatrixEqualsTheWrittenOutSeriesOffThePattern) 
     controller.reset(VectorXd::Zero(kStates), 0.0);
     VectorXd x = VectorXd::Constant(kStates, 0.1);
     x[2] = -1.6;
+    x[3] = 1.7;
     const VectorXd input = VectorXd::Constant(kInputs, 0.2);
     const double t = 0.7;
     const ThetaDSettings& s = controller.settings();
