@@ -223,15 +223,20 @@ void ThetaDController::order_unknowns() {
     }
   };
   fill_inverse();
-  // Then the unknowns of the input rows grouped by the exact zeros of their rows of L⁻¹, so that
-  // the partial solve multiplies only the nonzero blocks (last_term_).
-  const std::vector<Eigen::Index> grouped =
+  // Then the unknowns of each part grouped by the exact zeros of their rows of L⁻¹, so that the
+  // partial solve (last_term_) and the T1 basis (first_term_product_) multiply only nonzero blocks.
+  const std::vector<Eigen::Index> grouped_inputs =
       ZeroPatternProduct::group_rows_by_pattern(lyapunov_inverse_.topRows(input_row_unknowns_));
+  const std::vector<Eigen::Index> grouped_others =
+      ZeroPatternProduct::group_rows_by_pattern(lyapunov_inverse_.bottomRows(unknowns - input_row_unknowns_));
   const std::vector<Eigen::Index> rows(unknown_row_), cols(unknown_col_);
-  for (std::size_t k = 0; k < grouped.size(); ++k) {
-    unknown_row_[k] = rows[static_cast<std::size_t>(grouped[k])];
-    unknown_col_[k] = cols[static_cast<std::size_t>(grouped[k])];
-  }
+  auto place = [&](std::size_t to, Eigen::Index from) {
+    unknown_row_[to] = rows[static_cast<std::size_t>(from)];
+    unknown_col_[to] = cols[static_cast<std::size_t>(from)];
+  };
+  for (std::size_t k = 0; k < grouped_inputs.size(); ++k) place(k, grouped_inputs[k]);
+  for (std::size_t k = 0; k < grouped_others.size(); ++k)
+    place(grouped_inputs.size() + k, input_row_unknowns_ + grouped_others[k]);
   fill_inverse();
   last_term_ = ZeroPatternProduct(lyapunov_inverse_.topRows(input_row_unknowns_));
 }
@@ -300,6 +305,7 @@ void ThetaDController::prepare_first_term_basis(const SdcPattern& pattern) {
   g_unseen_.setOnes();
   if (count >= unknowns) {
     basis_.resize(unknowns, 0);
+    first_term_product_ = ZeroPatternProduct(basis_);
     coefficients_.resize(0);
     return;
   }
@@ -329,6 +335,7 @@ void ThetaDController::prepare_first_term_basis(const SdcPattern& pattern) {
     add_column();
   }
   basis_.noalias() = lyapunov_inverse_ * right_sides;
+  first_term_product_ = ZeroPatternProduct(basis_);
   coefficients_.resize(count);
 }
 

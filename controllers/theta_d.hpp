@@ -187,6 +187,7 @@ class ThetaDController final : public Controller {
   // coefficient. Kept only while K < n(n+1)/2, where one product with basis_ is cheaper than
   // forming W1 and solving; otherwise K = 0.
   Eigen::MatrixXd basis_;
+  ZeroPatternProduct first_term_product_;  // basis_ without its exact zeros (61 % for the helicopter)
   // Where a pass reads c: the column-major index in F of slots 0 … a_basis_count_ − 1, in B of the
   // others. 1 where an entry has no slot: there F, B must equal A0, g0 for T1 to be the product.
   std::vector<Eigen::Index> basis_entries_;

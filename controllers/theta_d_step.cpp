@@ -166,7 +166,7 @@ ThetaDController::LastTerm ThetaDController::evaluate_series(const Eigen::Ref<co
           if (change != 0.0) first_term_.noalias() += (e * change) * basis_.col(k);
         }
       } else {
-        first_term_.noalias() = e * (basis_ * coefficients_);
+        first_term_product_.apply(e, coefficients_, first_term_);
       }
       first_term_coefficients_ = coefficients_;
       first_term_current_ = true;
