@@ -214,30 +214,25 @@ void ThetaDController::order_unknowns() {
   }
   // packed_inverse() solves Ac'X + XAc + Q = 0, i.e. X = L⁻¹(−Q).
   lyapunov_inverse_.resize(unknowns, unknowns);
-  auto fill_inverse = [&] {
-    for (Eigen::Index b = 0; b < unknowns; ++b) {
-      const Eigen::Index from_b = ConstantLyapunovSolver::packed_index(unknown_row_[b], unknown_col_[b]);
-      for (Eigen::Index a = 0; a < unknowns; ++a)
-        lyapunov_inverse_(a, b) =
-            -lyapunov_->packed_inverse()(ConstantLyapunovSolver::packed_index(unknown_row_[a], unknown_col_[a]), from_b);
-    }
-  };
-  fill_inverse();
+  for (Eigen::Index b = 0; b < unknowns; ++b) {
+    const Eigen::Index from_b = ConstantLyapunovSolver::packed_index(unknown_row_[b], unknown_col_[b]);
+    for (Eigen::Index a = 0; a < unknowns; ++a)
+      lyapunov_inverse_(a, b) =
+          -lyapunov_->packed_inverse()(ConstantLyapunovSolver::packed_index(unknown_row_[a], unknown_col_[a]), from_b);
+  }
   // Then the unknowns of each part grouped by the exact zeros of their rows of L⁻¹, so that the
   // partial solve (last_term_) and the T1 basis (first_term_product_) multiply only nonzero blocks.
-  const std::vector<Eigen::Index> grouped_inputs =
+  std::vector<Eigen::Index> order =
       ZeroPatternProduct::group_rows_by_pattern(lyapunov_inverse_.topRows(input_row_unknowns_));
-  const std::vector<Eigen::Index> grouped_others =
-      ZeroPatternProduct::group_rows_by_pattern(lyapunov_inverse_.bottomRows(unknowns - input_row_unknowns_));
+  for (const Eigen::Index other :
+       ZeroPatternProduct::group_rows_by_pattern(lyapunov_inverse_.bottomRows(unknowns - input_row_unknowns_)))
+    order.push_back(input_row_unknowns_ + other);
   const std::vector<Eigen::Index> rows(unknown_row_), cols(unknown_col_);
-  auto place = [&](std::size_t to, Eigen::Index from) {
-    unknown_row_[to] = rows[static_cast<std::size_t>(from)];
-    unknown_col_[to] = cols[static_cast<std::size_t>(from)];
-  };
-  for (std::size_t k = 0; k < grouped_inputs.size(); ++k) place(k, grouped_inputs[k]);
-  for (std::size_t k = 0; k < grouped_others.size(); ++k)
-    place(grouped_inputs.size() + k, input_row_unknowns_ + grouped_others[k]);
-  fill_inverse();
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    unknown_row_[k] = rows[static_cast<std::size_t>(order[k])];
+    unknown_col_[k] = cols[static_cast<std::size_t>(order[k])];
+  }
+  lyapunov_inverse_ = Eigen::MatrixXd(lyapunov_inverse_(order, order));
   last_term_ = ZeroPatternProduct(lyapunov_inverse_.topRows(input_row_unknowns_));
 }
 
