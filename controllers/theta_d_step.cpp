@@ -42,6 +42,30 @@ bool all_zero(const Eigen::MatrixBase<Derived>& a) {
   return a.cwiseAbs().sum() == 0.0;
 }
 
+// sum += left · right, right having as many rows as left has columns. For a fixed number of rows N
+// each column of the sum is accumulated in registers, its rows split into the longest run of a
+// multiple of 8 and the rest: Eigen's own product at these sizes packs its operands (GEMM), and
+// under AVX-512 gives a fixed 18-vector 128-bit packets (18 is no multiple of 4), where the 16-row
+// run takes full-width ones.
+template <int N, class Sum, class Left, class Right>
+void add_product(Sum&& sum, const Left& left, const Right& right) {
+  if constexpr (N == Eigen::Dynamic) {
+    sum.noalias() += left * right;
+  } else {
+    constexpr int kHead = N / 8 * 8, kTail = N - kHead;
+    for (Eigen::Index j = 0; j < sum.cols(); ++j) {
+      Eigen::Matrix<double, kHead, 1> head = sum.col(j).template head<kHead>();
+      Eigen::Matrix<double, kTail, 1> tail = sum.col(j).template tail<kTail>();
+      for (Eigen::Index k = 0; k < right.rows(); ++k) {
+        head.noalias() += left.col(k).template head<kHead>() * right(k, j);
+        tail.noalias() += left.col(k).template tail<kTail>() * right(k, j);
+      }
+      sum.col(j).template head<kHead>() = head;
+      sum.col(j).template tail<kTail>() = tail;
+    }
+  }
+}
+
 }  // namespace
 
 template <int N, int M>
@@ -105,8 +129,13 @@ void ThetaDController::form_products(std::size_t i) {
   const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, twice(M)>> compact(compact_inputs_.data(), k, 2 * m);
   auto products = view<N, twice(M)>(products_[i]);
   // Y0 is the constant of reset(); a pass forms Z0 only.
-  if (i == 0) products.template rightCols<M>(m).noalias() = columns * compact.template rightCols<M>(m);
-  else products.noalias() = columns * compact;
+  if (i == 0) {
+    products.template rightCols<M>(m).setZero();
+    add_product<N>(products.template rightCols<M>(m), columns, compact.template rightCols<M>(m));
+  } else {
+    products.setZero();
+    add_product<N>(products, columns, compact);
+  }
 }
 
 template <int N, int M>
@@ -138,7 +167,7 @@ void ThetaDController::form_right_side(std::size_t i) {
   add(1.0, view<N, twice(M)>(products_[0]).template leftCols<M>(m), view<N, twice(M)>(products_[i - 1]).template rightCols<M>(m));
   for (std::size_t j = 1; j < i - j; ++j) add(1.0, view<N, M>(pairs_[j]), view<N, M>(pairs_[i - j]));
   if (i % 2 == 0) add(0.5, view<N, M>(pairs_[i / 2]), view<N, M>(pairs_[i / 2]));
-  sum.noalias() += left.leftCols(rank) * right.leftCols(rank).transpose();
+  add_product<N>(sum, left.leftCols(rank), right.leftCols(rank).transpose());
   for (Eigen::Index a = 0; a < unknowns; ++a)
     packed_right_[a] = sum(unknown_row_[a], unknown_col_[a]) + sum(unknown_col_[a], unknown_row_[a]);
 }
