@@ -19,25 +19,31 @@ std::vector<char> zero_pattern(const Eigen::Ref<const Eigen::MatrixXd>& M, Eigen
 
 }  // namespace
 
-ZeroPatternProduct::ZeroPatternProduct(const Eigen::Ref<const Eigen::MatrixXd>& M)
-    : rows_(M.rows()), cols_(M.cols()), gathered_(M.cols()) {
-  Eigen::Index first = 0;
+ZeroPatternProduct::ZeroPatternProduct(const Eigen::Ref<const Eigen::MatrixXd>& M, Kernel kernel)
+    : kernel_(kernel), rows_(M.rows()), cols_(M.cols()), gathered_(M.cols()) {
+  Eigen::Index first = 0, size = 0;
   while (first < rows_) {
     const std::vector<char> pattern = zero_pattern(M, first);
     Eigen::Index end = first + 1;
     while (end < rows_ && zero_pattern(M, end) == pattern) ++end;
     Block block;
     block.first_row = first;
+    block.rows = end - first;
+    block.padded_rows = kernel == Kernel::eigen ? block.rows : (block.rows + kPanel - 1) / kPanel * kPanel;
+    block.offset = size;
     for (Eigen::Index j = 0; j < cols_; ++j)
       if (pattern[static_cast<std::size_t>(j)]) block.columns.push_back(j);
     const auto count = static_cast<Eigen::Index>(block.columns.size());
-    block.values.resize(end - first, count);
-    for (Eigen::Index k = 0; k < count; ++k)
-      block.values.col(k) = M.col(block.columns[static_cast<std::size_t>(k)]).segment(first, end - first);
-    stored_entries_ += block.values.size();
+    size += (block.padded_rows * count + kPanel - 1) / kPanel * kPanel;  // each block starts aligned
+    stored_entries_ += block.rows * count;
     blocks_.push_back(std::move(block));
     first = end;
   }
+  values_ = Eigen::VectorXd::Zero(size);
+  for (const Block& block : blocks_)
+    for (std::size_t k = 0; k < block.columns.size(); ++k)
+      values_.segment(block.offset + static_cast<Eigen::Index>(k) * block.padded_rows, block.rows) =
+          M.col(block.columns[k]).segment(block.first_row, block.rows);
 }
 
 std::vector<Eigen::Index> ZeroPatternProduct::group_rows_by_pattern(const Eigen::Ref<const Eigen::MatrixXd>& M) {
@@ -53,6 +59,25 @@ std::vector<Eigen::Index> ZeroPatternProduct::group_rows_by_pattern(const Eigen:
   return order;
 }
 
+template <Eigen::Index Rows>
+void ZeroPatternProduct::apply_panel(const Block& block, Eigen::Index row, double alpha,
+                                     Eigen::Ref<Eigen::VectorXd> y) const {
+  using Panel = Eigen::Matrix<double, Rows, 1>;
+  // Two sums over alternate columns: one alone would wait on the latency of each multiply-add.
+  Panel even = Panel::Zero(), odd = Panel::Zero();
+  const double* column = values_.data() + block.offset + row;
+  const Eigen::Index stride = block.padded_rows, count = static_cast<Eigen::Index>(block.columns.size());
+  Eigen::Index k = 0;
+  for (; k + 1 < count; k += 2, column += 2 * stride) {
+    even.noalias() += Eigen::Map<const Panel>(column) * gathered_[k];
+    odd.noalias() += Eigen::Map<const Panel>(column + stride) * gathered_[k + 1];
+  }
+  if (k < count) even.noalias() += Eigen::Map<const Panel>(column) * gathered_[k];
+  even += odd;
+  const Eigen::Index kept = std::min(Rows, block.rows - row);  // the padding stays out of y
+  y.segment(block.first_row + row, kept) = alpha * even.head(kept);
+}
+
 void ZeroPatternProduct::apply(double alpha, const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::VectorXd> y) {
   if (x.size() != cols_ || y.size() != rows_)
     throw Error("ZeroPatternProduct: a " + std::to_string(rows_) + "x" + std::to_string(cols_) + " product got x of " +
@@ -60,7 +85,14 @@ void ZeroPatternProduct::apply(double alpha, const Eigen::Ref<const Eigen::Vecto
   for (const Block& block : blocks_) {
     const auto count = static_cast<Eigen::Index>(block.columns.size());
     for (Eigen::Index k = 0; k < count; ++k) gathered_[k] = x[block.columns[static_cast<std::size_t>(k)]];
-    y.segment(block.first_row, block.values.rows()).noalias() = alpha * (block.values * gathered_.head(count));
+    if (kernel_ == Kernel::eigen) {
+      const Eigen::Map<const Eigen::MatrixXd> values(values_.data() + block.offset, block.rows, count);
+      y.segment(block.first_row, block.rows).noalias() = alpha * (values * gathered_.head(count));
+      continue;
+    }
+    Eigen::Index row = 0;
+    for (; row + 2 * kPanel <= block.padded_rows; row += 2 * kPanel) apply_panel<2 * kPanel>(block, row, alpha, y);
+    for (; row < block.padded_rows; row += kPanel) apply_panel<kPanel>(block, row, alpha, y);
   }
 }
 

@@ -16,10 +16,18 @@ namespace thetad {
 
 class ZeroPatternProduct {
  public:
+  // How a block is multiplied: by Eigen's matrix–vector product, or a panel of rows at a time,
+  // accumulated in registers over two streams of columns. Same products, summed in another order.
+  enum class Kernel { eigen, register_panels };
+  // The faster for this build, as measured on the θ–D step (docs/performance.md): the panels with
+  // 512-bit vectors (AVX-512), Eigen's product with 128-bit ones (SSE2), where 16-row panels run
+  // out of registers. Other widths were not measured and keep Eigen's.
+  static constexpr Kernel kFastest = EIGEN_MAX_ALIGN_BYTES >= 64 ? Kernel::register_panels : Kernel::eigen;
+
   ZeroPatternProduct() = default;
   // Blocks of consecutive rows of M with the same zero pattern (sort the rows with
   // group_rows_by_pattern() first, so that each pattern is one block).
-  explicit ZeroPatternProduct(const Eigen::Ref<const Eigen::MatrixXd>& M);
+  explicit ZeroPatternProduct(const Eigen::Ref<const Eigen::MatrixXd>& M, Kernel kernel = kFastest);
 
   // A stable order of M's rows that brings the rows of each zero pattern together, the patterns
   // in the order of their first row: order[k] is the row of M that goes k-th.
@@ -30,16 +38,23 @@ class ZeroPatternProduct {
 
   Eigen::Index rows() const { return rows_; }
   Eigen::Index cols() const { return cols_; }
-  // Entries a product multiplies: the sum over blocks of rows × nonzero columns.
+  // Entries of M a product reads: the sum over blocks of rows × nonzero columns.
   Eigen::Index stored_entries() const { return stored_entries_; }
 
  private:
+  // A block's values are stored column by column; for the panels, its rows padded by zeros to a
+  // multiple of kPanel, so that every panel is whole.
+  static constexpr Eigen::Index kPanel = 8;
   struct Block {
-    Eigen::Index first_row = 0;
+    Eigen::Index first_row = 0, rows = 0, padded_rows = 0, offset = 0;  // offset into values_
     std::vector<Eigen::Index> columns;  // the nonzero columns of its rows, ascending
-    Eigen::MatrixXd values;             // M(rows, columns)
   };
+  // y on rows [row, row + Rows) of a block (clipped to it) from gathered_.
+  template <Eigen::Index Rows>
+  void apply_panel(const Block& block, Eigen::Index row, double alpha, Eigen::Ref<Eigen::VectorXd> y) const;
+  Kernel kernel_ = kFastest;
   std::vector<Block> blocks_;
+  Eigen::VectorXd values_;  // the blocks' M(rows, columns), padded, one after the other
   Eigen::Index rows_ = 0, cols_ = 0, stored_entries_ = 0;
   Eigen::VectorXd gathered_;  // x on a block's columns
 };

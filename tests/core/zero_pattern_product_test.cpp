@@ -1,6 +1,7 @@
 #include "core/zero_pattern_product.hpp"
 
 #include <random>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -43,10 +44,13 @@ TEST(ZeroPatternProduct, GroupsTheRowsOfAPatternInTheOrderOfTheirFirstRow) {
   }
 }
 
-TEST(ZeroPatternProduct, MultipliesOnlyTheNonzerosAndGivesTheDenseProduct) {
+// Each test runs with both kernels, whichever this build picks by default.
+class ZeroPatternKernels : public ::testing::TestWithParam<ZeroPatternProduct::Kernel> {};
+
+TEST_P(ZeroPatternKernels, MultipliesOnlyTheNonzerosAndGivesTheDenseProduct) {
   const MatrixXd M = patterned_matrix();
   const MatrixXd sorted = rows_in_order(M, ZeroPatternProduct::group_rows_by_pattern(M));
-  ZeroPatternProduct product(sorted);
+  ZeroPatternProduct product(sorted, GetParam());
   EXPECT_EQ(product.rows(), 40);
   EXPECT_EQ(product.cols(), 30);
   EXPECT_EQ(product.stored_entries(), 10 * 20 + 10 * 10 + 10 * 18);  // the zero rows store nothing
@@ -58,9 +62,9 @@ TEST(ZeroPatternProduct, MultipliesOnlyTheNonzerosAndGivesTheDenseProduct) {
   EXPECT_EQ(y.tail(10), VectorXd::Zero(10));
 }
 
-TEST(ZeroPatternProduct, AMatrixWithoutZerosIsOneDenseBlock) {
+TEST_P(ZeroPatternKernels, AMatrixWithoutZerosIsOneDenseBlock) {
   const MatrixXd M = MatrixXd::Random(7, 5);
-  ZeroPatternProduct product(M);
+  ZeroPatternProduct product(M, GetParam());
   EXPECT_EQ(product.stored_entries(), 35);
   const VectorXd x = VectorXd::Random(5);
   VectorXd y(7);
@@ -68,9 +72,29 @@ TEST(ZeroPatternProduct, AMatrixWithoutZerosIsOneDenseBlock) {
   EXPECT_LE((y - 2.0 * M * x).norm(), 1e-14 * (M * x).norm());
 }
 
-TEST(ZeroPatternProduct, AllocatesNothingPerProductAndRefusesWrongSizes) {
+// Blocks of 37 rows (two 16-row panels and an 8-row one, the last clipped), 1 row and 17 rows, over
+// odd and even numbers of columns (the panels take columns two at a time), one a single column.
+TEST_P(ZeroPatternKernels, BlocksOfAnyHeightAndWidthGiveTheDenseProduct) {
+  std::mt19937_64 generator(5);
+  std::normal_distribution<double> normal;
+  MatrixXd M = MatrixXd::Zero(55, 15);
+  for (Eigen::Index i = 0; i < M.rows(); ++i)
+    for (Eigen::Index j = 0; j < M.cols(); ++j) {
+      const bool nonzero = i < 37 ? j % 2 == 1 : i == 37 ? j == 4 : true;
+      if (nonzero) M(i, j) = normal(generator);
+    }
+  ZeroPatternProduct product(M, GetParam());
+  EXPECT_EQ(product.stored_entries(), 37 * 7 + 1 + 17 * 15);
+  const VectorXd x = VectorXd::LinSpaced(15, 3.0, -2.0);
+  VectorXd y = VectorXd::Constant(55, 7.0);
+  product.apply(1.5, x, y);
+  const VectorXd expected = 1.5 * (M * x);
+  EXPECT_LE((y - expected).cwiseAbs().maxCoeff(), 1e-14 * expected.cwiseAbs().maxCoeff());
+}
+
+TEST_P(ZeroPatternKernels, AllocatesNothingPerProductAndRefusesWrongSizes) {
   const MatrixXd M = patterned_matrix();
-  ZeroPatternProduct product(rows_in_order(M, ZeroPatternProduct::group_rows_by_pattern(M)));
+  ZeroPatternProduct product(rows_in_order(M, ZeroPatternProduct::group_rows_by_pattern(M)), GetParam());
   const VectorXd x = VectorXd::Ones(30);
   VectorXd y(40);
   const long allocations = testing::heap_allocations_during([&] { product.apply(1.0, x, y); });
@@ -79,6 +103,13 @@ TEST(ZeroPatternProduct, AllocatesNothingPerProductAndRefusesWrongSizes) {
   VectorXd short_y(39);
   EXPECT_THROW(product.apply(1.0, x, short_y), Error);
 }
+
+INSTANTIATE_TEST_SUITE_P(Kernels, ZeroPatternKernels,
+                         ::testing::Values(ZeroPatternProduct::Kernel::eigen, ZeroPatternProduct::Kernel::register_panels),
+                         [](const ::testing::TestParamInfo<ZeroPatternProduct::Kernel>& info) {
+                           return info.param == ZeroPatternProduct::Kernel::eigen ? std::string("eigen")
+                                                                                   : std::string("register_panels");
+                         });
 
 }  // namespace
 }  // namespace thetad
