@@ -267,7 +267,8 @@ void ThetaDController::prepare_projections() {
   // per step, n per entry of the supports, and their dense products per pass cost less than the
   // partial solves they replace. Those multiply only last_term_'s stored entries but cost about
   // 1.4 times as much per entry as a dense product (a gather and a call per block; measured on
-  // the helicopter, docs/performance.md).
+  // the helicopter with Eigen's kernel, docs/performance.md; the register panels, padding and
+  // all, measured faster than that kernel, so the rule errs towards the partial solves there).
   const auto support = static_cast<Eigen::Index>(projection_support_.size());
   const auto passes = static_cast<Eigen::Index>(model_->sdc_depends_on_input() ? settings_.fixed_point_iterations : 1);
   project_last_term_ = settings_.terms >= 3 && passes > 1 &&

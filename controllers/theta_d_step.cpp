@@ -45,10 +45,13 @@ bool all_zero(const Eigen::MatrixBase<Derived>& a) {
 // sum += left · right, right having as many rows as left has columns. For a fixed number of rows N
 // each column of the sum is accumulated in registers, its rows split into the longest run of a
 // multiple of 8 and the rest: Eigen's own product at these sizes packs its operands (GEMM), and
-// under AVX-512 gives a fixed 18-vector 128-bit packets (18 is no multiple of 4), where the 16-row
-// run takes full-width ones.
+// under AVX-512 Eigen uses 128-bit packets for a fixed 18-row vector (18 is a multiple of neither
+// 8 nor 4), where the 16-row run takes 512-bit ones. Meant for the helicopter's N = 18: a much
+// larger N would run out of registers.
 template <int N, class Sum, class Left, class Right>
 void add_product(Sum&& sum, const Left& left, const Right& right) {
+  static_assert(N == Eigen::Dynamic || (N >= 8 && N <= 32), "add_product: a fixed N of 8 to 32 rows");
+  eigen_assert(left.cols() == right.rows() && sum.cols() == right.cols());
   if constexpr (N == Eigen::Dynamic) {
     sum.noalias() += left * right;
   } else {

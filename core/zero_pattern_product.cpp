@@ -34,16 +34,27 @@ ZeroPatternProduct::ZeroPatternProduct(const Eigen::Ref<const Eigen::MatrixXd>& 
     for (Eigen::Index j = 0; j < cols_; ++j)
       if (pattern[static_cast<std::size_t>(j)]) block.columns.push_back(j);
     const auto count = static_cast<Eigen::Index>(block.columns.size());
-    size += (block.padded_rows * count + kPanel - 1) / kPanel * kPanel;  // each block starts aligned
+    // Each block starts a whole number of panels from the first (64-byte aligned where Eigen
+    // allocates so: AVX-512).
+    size += (block.padded_rows * count + kPanel - 1) / kPanel * kPanel;
     stored_entries_ += block.rows * count;
     blocks_.push_back(std::move(block));
     first = end;
   }
   values_ = Eigen::VectorXd::Zero(size);
-  for (const Block& block : blocks_)
-    for (std::size_t k = 0; k < block.columns.size(); ++k)
-      values_.segment(block.offset + static_cast<Eigen::Index>(k) * block.padded_rows, block.rows) =
-          M.col(block.columns[k]).segment(block.first_row, block.rows);
+  for (const Block& block : blocks_) {
+    const auto count = static_cast<Eigen::Index>(block.columns.size());
+    for (Eigen::Index row = 0; row < block.padded_rows;) {
+      // Eigen's product reads the block as one column-major matrix: one panel the height of it.
+      const Eigen::Index height =
+          kernel == Kernel::eigen ? block.rows : block.padded_rows - row >= 2 * kPanel ? 2 * kPanel : kPanel;
+      const Eigen::Index kept = std::min(height, block.rows - row);
+      for (Eigen::Index k = 0; k < count; ++k)
+        values_.segment(block.offset + row * count + k * height, kept) =
+            M.col(block.columns[static_cast<std::size_t>(k)]).segment(block.first_row + row, kept);
+      row += height;
+    }
+  }
 }
 
 std::vector<Eigen::Index> ZeroPatternProduct::group_rows_by_pattern(const Eigen::Ref<const Eigen::MatrixXd>& M) {
@@ -65,12 +76,12 @@ void ZeroPatternProduct::apply_panel(const Block& block, Eigen::Index row, doubl
   using Panel = Eigen::Matrix<double, Rows, 1>;
   // Two sums over alternate columns: one alone would wait on the latency of each multiply-add.
   Panel even = Panel::Zero(), odd = Panel::Zero();
-  const double* column = values_.data() + block.offset + row;
-  const Eigen::Index stride = block.padded_rows, count = static_cast<Eigen::Index>(block.columns.size());
+  const Eigen::Index count = static_cast<Eigen::Index>(block.columns.size());
+  const double* column = values_.data() + block.offset + row * count;
   Eigen::Index k = 0;
-  for (; k + 1 < count; k += 2, column += 2 * stride) {
+  for (; k + 1 < count; k += 2, column += 2 * Rows) {
     even.noalias() += Eigen::Map<const Panel>(column) * gathered_[k];
-    odd.noalias() += Eigen::Map<const Panel>(column + stride) * gathered_[k + 1];
+    odd.noalias() += Eigen::Map<const Panel>(column + Rows) * gathered_[k + 1];
   }
   if (k < count) even.noalias() += Eigen::Map<const Panel>(column) * gathered_[k];
   even += odd;
@@ -84,6 +95,10 @@ void ZeroPatternProduct::apply(double alpha, const Eigen::Ref<const Eigen::Vecto
                 std::to_string(x.size()) + " and y of " + std::to_string(y.size()) + " entries");
   for (const Block& block : blocks_) {
     const auto count = static_cast<Eigen::Index>(block.columns.size());
+    if (count == 0) {  // rows that are all zero: nothing stored to read
+      y.segment(block.first_row, block.rows).setZero();
+      continue;
+    }
     for (Eigen::Index k = 0; k < count; ++k) gathered_[k] = x[block.columns[static_cast<std::size_t>(k)]];
     if (kernel_ == Kernel::eigen) {
       const Eigen::Map<const Eigen::MatrixXd> values(values_.data() + block.offset, block.rows, count);

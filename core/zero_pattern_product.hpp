@@ -4,8 +4,9 @@
 // patterns, as the packed inverse of a Lyapunov operator whose Ac is reducible (whole blocks of
 // the inverse are zero; θ–D's rows of it for the helicopter, docs/performance.md). Rows that share
 // a pattern form one dense block over their nonzero columns, so a product reads and multiplies
-// only those. For finite x the result is the dense product's up to the order of the sums: only
-// entries that are exactly 0.0 are left out (0 · Inf would be NaN). Without zeros: one block.
+// only those (and, with the register panels, the zeros that pad a block to whole panels). For
+// finite x the result is the dense product's up to the order of the sums: only entries that are
+// exactly 0.0 are left out (0 · Inf would be NaN). Without zeros: one block.
 
 #include <cstddef>
 #include <vector>
@@ -19,10 +20,14 @@ class ZeroPatternProduct {
   // How a block is multiplied: by Eigen's matrix–vector product, or a panel of rows at a time,
   // accumulated in registers over two streams of columns. Same products, summed in another order.
   enum class Kernel { eigen, register_panels };
-  // The faster for this build, as measured on the θ–D step (docs/performance.md): the panels with
-  // 512-bit vectors (AVX-512), Eigen's product with 128-bit ones (SSE2), where 16-row panels run
-  // out of registers. Other widths were not measured and keep Eigen's.
-  static constexpr Kernel kFastest = EIGEN_MAX_ALIGN_BYTES >= 64 ? Kernel::register_panels : Kernel::eigen;
+  // The faster for this build, as measured on the θ–D step (docs/performance.md): the panels
+  // where Eigen vectorises with AVX-512, Eigen's product with SSE2 (where 16-row panels run out of
+  // registers). AVX2 was not measured and keeps Eigen's.
+#ifdef EIGEN_VECTORIZE_AVX512
+  static constexpr Kernel kFastest = Kernel::register_panels;
+#else
+  static constexpr Kernel kFastest = Kernel::eigen;
+#endif
 
   ZeroPatternProduct() = default;
   // Blocks of consecutive rows of M with the same zero pattern (sort the rows with
@@ -38,12 +43,15 @@ class ZeroPatternProduct {
 
   Eigen::Index rows() const { return rows_; }
   Eigen::Index cols() const { return cols_; }
-  // Entries of M a product reads: the sum over blocks of rows × nonzero columns.
+  // The entries of M's blocks: the sum over blocks of rows × nonzero columns (the panels also
+  // multiply the padding, up to 7 rows a block).
   Eigen::Index stored_entries() const { return stored_entries_; }
 
  private:
-  // A block's values are stored column by column; for the panels, its rows padded by zeros to a
-  // multiple of kPanel, so that every panel is whole.
+  // For Eigen's product a block's values are stored column by column. For the panels its rows are
+  // padded by zeros to a multiple of kPanel and cut into panels of 2·kPanel rows (the last one
+  // kPanel if that is what is left), each stored column by column after the one above it, so
+  // that a panel's product reads one contiguous stream however tall the block.
   static constexpr Eigen::Index kPanel = 8;
   struct Block {
     Eigen::Index first_row = 0, rows = 0, padded_rows = 0, offset = 0;  // offset into values_

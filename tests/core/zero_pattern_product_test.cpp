@@ -72,24 +72,43 @@ TEST_P(ZeroPatternKernels, AMatrixWithoutZerosIsOneDenseBlock) {
   EXPECT_LE((y - 2.0 * M * x).norm(), 1e-14 * (M * x).norm());
 }
 
-// Blocks of 37 rows (two 16-row panels and an 8-row one, the last clipped), 1 row and 17 rows, over
-// odd and even numbers of columns (the panels take columns two at a time), one a single column.
+// Blocks of 37 rows (two 16-row panels and an 8-row one, the last clipped), 1 row, 16 and 8 rows
+// (whole panels) and 17 rows, over odd and even numbers of columns (the panels take columns two
+// at a time), one a single column. y is a segment between guard entries that must stay as they
+// were: padding written out of a block would show there or in the next block.
 TEST_P(ZeroPatternKernels, BlocksOfAnyHeightAndWidthGiveTheDenseProduct) {
   std::mt19937_64 generator(5);
   std::normal_distribution<double> normal;
-  MatrixXd M = MatrixXd::Zero(55, 15);
+  MatrixXd M = MatrixXd::Zero(79, 15);
   for (Eigen::Index i = 0; i < M.rows(); ++i)
     for (Eigen::Index j = 0; j < M.cols(); ++j) {
-      const bool nonzero = i < 37 ? j % 2 == 1 : i == 37 ? j == 4 : true;
+      const bool nonzero = i < 37   ? j % 2 == 1
+                           : i == 37 ? j == 4
+                           : i < 54  ? j < 14
+                           : i < 62  ? j % 3 == 0
+                                     : true;
       if (nonzero) M(i, j) = normal(generator);
     }
   ZeroPatternProduct product(M, GetParam());
-  EXPECT_EQ(product.stored_entries(), 37 * 7 + 1 + 17 * 15);
+  EXPECT_EQ(product.stored_entries(), 37 * 7 + 1 + 16 * 14 + 8 * 5 + 17 * 15);
   const VectorXd x = VectorXd::LinSpaced(15, 3.0, -2.0);
-  VectorXd y = VectorXd::Constant(55, 7.0);
-  product.apply(1.5, x, y);
+  VectorXd guarded = VectorXd::Constant(79 + 16, 7.0);
+  product.apply(1.5, x, guarded.segment(8, 79));
   const VectorXd expected = 1.5 * (M * x);
-  EXPECT_LE((y - expected).cwiseAbs().maxCoeff(), 1e-14 * expected.cwiseAbs().maxCoeff());
+  EXPECT_LE((guarded.segment(8, 79) - expected).cwiseAbs().maxCoeff(), 1e-14 * expected.cwiseAbs().maxCoeff());
+  EXPECT_EQ(guarded.head(8), VectorXd::Constant(8, 7.0));
+  EXPECT_EQ(guarded.tail(8), VectorXd::Constant(8, 7.0));
+}
+
+// No nonzero column at all (T1's basis when no coefficient varies has none): zeros.
+TEST_P(ZeroPatternKernels, AMatrixOfZerosOrWithoutColumnsGivesZeros) {
+  for (const MatrixXd& M : {MatrixXd(MatrixXd::Zero(40, 5)), MatrixXd(171, 0)}) {
+    ZeroPatternProduct product(M, GetParam());
+    EXPECT_EQ(product.stored_entries(), 0);
+    VectorXd y = VectorXd::Constant(M.rows(), 7.0);
+    product.apply(1.0, VectorXd::Ones(M.cols()), y);
+    EXPECT_EQ(y, VectorXd::Zero(M.rows()));
+  }
 }
 
 TEST_P(ZeroPatternKernels, AllocatesNothingPerProductAndRefusesWrongSizes) {
