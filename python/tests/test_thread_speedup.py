@@ -17,7 +17,8 @@ def fly(seed):
     # θ–D: its design needs no trim (Ipopt solves are serialized), so its flights are all C++ in parallel.
     # 4 s of flight (~0.06 s of CPU): what a call does holding the GIL (its arguments, its result, the
     # pool's hand-offs) stays small beside it. With 1 s flights (~0.025 s) that share alone held the
-    # ratio to 1.71-1.76x on a quiet host, 1.40-1.48x with one core partly taken (2026-11-26).
+    # ratio to 1.71-1.76x on a quiet host, 1.40-1.48x with one core partly taken (2026-11-26). It can still
+    # fail on a VM whose two vCPUs do not give two cores' throughput: 1.48x once with 1.94 cores granted.
     return thetad.run("scenario-1", "theta-d", seed=seed, duration=4.0, summary_only=True, timing=False)
 
 
