@@ -46,8 +46,7 @@ ZeroPatternProduct::ZeroPatternProduct(const Eigen::Ref<const Eigen::MatrixXd>& 
     const auto count = static_cast<Eigen::Index>(block.columns.size());
     for (Eigen::Index row = 0; row < block.padded_rows;) {
       // Eigen's product reads the block as one column-major matrix: one panel the height of it.
-      const Eigen::Index height =
-          kernel == Kernel::eigen ? block.rows : block.padded_rows - row >= 2 * kPanel ? 2 * kPanel : kPanel;
+      const Eigen::Index height = kernel == Kernel::eigen ? block.rows : panel_height(block, row);
       const Eigen::Index kept = std::min(height, block.rows - row);
       for (Eigen::Index k = 0; k < count; ++k)
         values_.segment(block.offset + row * count + k * height, kept) =
@@ -105,9 +104,10 @@ void ZeroPatternProduct::apply(double alpha, const Eigen::Ref<const Eigen::Vecto
       y.segment(block.first_row, block.rows).noalias() = alpha * (values * gathered_.head(count));
       continue;
     }
-    Eigen::Index row = 0;
-    for (; row + 2 * kPanel <= block.padded_rows; row += 2 * kPanel) apply_panel<2 * kPanel>(block, row, alpha, y);
-    for (; row < block.padded_rows; row += kPanel) apply_panel<kPanel>(block, row, alpha, y);
+    for (Eigen::Index row = 0; row < block.padded_rows; row += panel_height(block, row)) {
+      if (panel_height(block, row) == 2 * kPanel) apply_panel<2 * kPanel>(block, row, alpha, y);
+      else apply_panel<kPanel>(block, row, alpha, y);
+    }
   }
 }
 

@@ -57,6 +57,10 @@ class ZeroPatternProduct {
     Eigen::Index first_row = 0, rows = 0, padded_rows = 0, offset = 0;  // offset into values_
     std::vector<Eigen::Index> columns;  // the nonzero columns of its rows, ascending
   };
+  // The height of the panel at `row` of a block: 2·kPanel while that much is left, then kPanel.
+  static Eigen::Index panel_height(const Block& block, Eigen::Index row) {
+    return block.padded_rows - row >= 2 * kPanel ? 2 * kPanel : kPanel;
+  }
   // y on rows [row, row + Rows) of a block (clipped to it) from gathered_.
   template <Eigen::Index Rows>
   void apply_panel(const Block& block, Eigen::Index row, double alpha, Eigen::Ref<Eigen::VectorXd> y) const;
