@@ -39,15 +39,24 @@ std::optional<int> MatrixSignSolver::compute(const Eigen::Ref<const Eigen::Matri
   for (int iteration = 1; iteration <= max_iterations; ++iteration) {
     lu_.compute(Z_);
     invert_factored();
-    if (!inverse_.allFinite()) return std::nullopt;
     // Scaling brings the eigenvalues near ±1 in the first steps, where plain Newton would halve
     // a large eigenvalue per step; near convergence it only perturbs the quadratic phase.
     const double c =
         scaled ? std::exp(-lu_.matrixLU().diagonal().cwiseAbs().array().log().sum() / static_cast<double>(N)) : 1.0;
-    // Z⁻¹ = U⁻¹L⁻¹P: column j of Z⁻¹ is column permutation(j) of inverse_.
+    // Z⁻¹ = U⁻¹L⁻¹P: column j of Z⁻¹ is column permutation(j) of inverse_. The entrywise 1-norms
+    // of the next iterate and of the change are summed column by column as it is formed, not in
+    // three more passes over the matrix (2–3 % of the solve at n = 12 and 18); an entry that is
+    // not finite makes the sum NaN or Inf.
     const auto& permutation = lu_.permutationP().indices();
-    for (Eigen::Index j = 0; j < N; ++j) next_.col(j) = 0.5 * (c * Z_.col(j) + inverse_.col(permutation(j)) / c);
-    const double change = (next_ - Z_).lpNorm<1>() / next_.lpNorm<1>();
+    double next_norm = 0.0;
+    double change_norm = 0.0;
+    for (Eigen::Index j = 0; j < N; ++j) {
+      next_.col(j) = 0.5 * (c * Z_.col(j) + inverse_.col(permutation(j)) / c);
+      next_norm += next_.col(j).cwiseAbs().sum();
+      change_norm += (next_.col(j) - Z_.col(j)).cwiseAbs().sum();
+    }
+    if (!std::isfinite(next_norm)) return std::nullopt;
+    const double change = change_norm / next_norm;
     Z_.swap(next_);
     if (last) return iteration;
     if (!std::isfinite(change)) return std::nullopt;
