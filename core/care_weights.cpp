@@ -18,10 +18,10 @@ constexpr double kEps = std::numeric_limits<double>::epsilon();
 
 // Relative to the matrix itself: weights that differ by 1e7 within one matrix are normal here.
 void check_symmetric(const char* name, const MatrixRef& M) {
-  const double asymmetry = (M - M.transpose()).norm();
-  if (asymmetry > 1e-10 * M.norm())
+  const double asymmetry = frobenius_norm(M - M.transpose());
+  if (asymmetry > 1e-10 * frobenius_norm(M))
     fail(std::string(name) + " is not symmetric (‖" + name + " − " + name + "'‖_F = " + num(asymmetry) +
-         ", ‖" + name + "‖_F = " + num(M.norm()) + ")");
+         ", ‖" + name + "‖_F = " + num(frobenius_norm(M)) + ")");
 }
 
 // Smallest and largest eigenvalue of a symmetric matrix. Weights are usually diagonal: a diagonal
@@ -87,7 +87,7 @@ void set_input_matrix(Weights& w, const MatrixRef& B) {
 
 double care_residual(const MatrixRef& A, const Weights& w, const MatrixXd& P, const MatrixXd& WP, MatrixXd& Res) {
   Res.noalias() = A.transpose() * P;
-  const double AtP_norm = Res.norm();
+  const double AtP_norm = frobenius_norm(Res);
   // Res + Res' in place, by pairs: no temporary for the transpose on the hot path.
   for (Index j = 0; j < Res.cols(); ++j) {
     Res(j, j) *= 2.0;
@@ -98,7 +98,15 @@ double care_residual(const MatrixRef& A, const Weights& w, const MatrixXd& P, co
   return AtP_norm;
 }
 
-double relative_to_q(double residual_norm, const Weights& w) { return residual_norm / std::max(1.0, w.Q.norm()); }
+double frobenius_norm(const MatrixRef& M) {
+  const double norm = M.norm();
+  if (norm > 1e-140 && norm < 1e140) return norm;
+  return M.stableNorm();
+}
+
+double relative_to_q(double residual_norm, const Weights& w) {
+  return residual_norm / std::max(1.0, frobenius_norm(w.Q));
+}
 
 double normwise_residual(double residual_norm, double q_norm, double a_norm, double g_norm, double p_norm) {
   return residual_norm / (q_norm + 2.0 * a_norm * p_norm + g_norm * p_norm * p_norm);

@@ -40,6 +40,13 @@ void set_input_matrix(Weights& w, const MatrixRef& B);
 double care_residual(const MatrixRef& A, const Weights& w, const Eigen::MatrixXd& P, const Eigen::MatrixXd& WP,
                    Eigen::MatrixXd& Res);
 
+// ‖M‖_F, also where Eigen's norm() fails: it sums the squares of the entries, so a matrix whose
+// entries all lie below ~1e-154 has norm 0 and one with an entry above ~1e154 has norm ∞. The
+// residual of an equation whose weights are scaled by 1e-170 would then read as converged, and one
+// scaled by 1e200 as not finite. stableNorm() rescales, at a few times the cost, so it is taken only
+// when norm() leaves the range where the sum of squares is exact to rounding.
+double frobenius_norm(const MatrixRef& M);
+
 // ‖Res‖_F / max(1, ‖Q‖_F): CareResult::relative_residual.
 double relative_to_q(double residual_norm, const Weights& w);
 

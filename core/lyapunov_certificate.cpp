@@ -18,7 +18,7 @@ bool LyapunovCertificate::positive_definite(const Eigen::MatrixXd& X, double rou
   // ‖ |L||L'| ‖_F ≤ ‖L‖_F² = tr(X − mI + E) ≤ √n‖X‖_F + n‖E‖_2, so ‖E‖_2 ≲ (n + 1)√n ε‖X‖_F:
   // 2n(n + 1)ε‖X‖_F bounds it with room for the second-order terms.
   const double n = static_cast<double>(X.rows());
-  const double margin = rounding + 2.0 * n * (n + 1.0) * kEps * X.norm();
+  const double margin = rounding + 2.0 * n * (n + 1.0) * kEps * care::frobenius_norm(X);
   // A NaN or an infinity would pass: LLT fails only on a pivot ≤ 0, and NaN ≤ 0 is false.
   if (!std::isfinite(margin)) return false;
   cholesky_.compute(X - margin * Eigen::MatrixXd::Identity(X.rows(), X.cols()));
@@ -37,10 +37,10 @@ bool LyapunovCertificate::proves_hurwitz(const care::MatrixRef& A, const care::W
   // loop proved Hurwitz is A − W'W P with the exact product).
   const double n = static_cast<double>(P.rows());
   const double m = static_cast<double>(WP.rows());
-  const double wp_norm = WP.norm();
-  const double p_norm = P.norm();
-  const double rounding = (n + m + 4.0) * kEps * (w.Q.norm() + 2.0 * A.norm() * p_norm + 2.0 * wp_norm * wp_norm) +
-                          4.0 * n * kEps * w.W.norm() * p_norm * wp_norm;
+  const double wp_norm = care::frobenius_norm(WP);
+  const double p_norm = care::frobenius_norm(P);
+  const double rounding = (n + m + 4.0) * kEps * (care::frobenius_norm(w.Q) + 2.0 * care::frobenius_norm(A) * p_norm + 2.0 * wp_norm * wp_norm) +
+                          4.0 * n * kEps * care::frobenius_norm(w.W) * p_norm * wp_norm;
   return positive_definite(M_, rounding);
 }
 

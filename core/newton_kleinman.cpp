@@ -54,7 +54,7 @@ NewtonKleinmanSolver::NewtonKleinmanSolver(const MatrixRef& Q, const MatrixRef& 
     fail("Newton–Kleinman needs tolerance > 0 and max_iterations ≥ 1 (got " + num(tolerance) + ", " +
          std::to_string(max_iterations) + ")");
   weights_ = care::prepare_weights(Q, R);
-  q_norm_ = weights_.Q.norm();
+  q_norm_ = care::frobenius_norm(weights_.Q);
   weights_.W.resize(m_, n_);
   for (Iterate* it : {&current_, &next_}) {
     it->P.resize(n_, n_);
@@ -73,7 +73,7 @@ void NewtonKleinmanSolver::evaluate(const MatrixRef& A, Iterate& it) {
   it.WP.noalias() = weights_.W * it.P;
   const double AtP_norm = care::care_residual(A, weights_, it.P, it.WP, it.Res);
   WPWPt_.noalias() = it.WP * it.WP.transpose();  // ‖PGP‖_F = ‖(WP)'(WP)‖_F = ‖(WP)(WP)'‖_F, m×m
-  it.rho = relative_to_terms(it.Res.norm(), q_norm_, AtP_norm, WPWPt_.norm());
+  it.rho = relative_to_terms(care::frobenius_norm(it.Res), q_norm_, AtP_norm, care::frobenius_norm(WPWPt_));
 }
 
 void NewtonKleinmanSolver::factor_closed_loop(const MatrixRef& A, const Iterate& it) {
@@ -106,7 +106,7 @@ bool NewtonKleinmanSolver::iterate(const MatrixRef& A, const MatrixRef& P0, bool
     // tolerance or, after a Newton step, has stopped shrinking, i.e. reached the rounding level of
     // this equation. A chord step that stops shrinking says only that its Schur form is too old.
     if (accepted > 0 && !retake) {
-      const bool small = step <= tolerance_ * std::max(1.0, current_.P.norm());
+      const bool small = step <= tolerance_ * std::max(1.0, care::frobenius_norm(current_.P));
       const bool stagnant = step > 0.5 * previous_step;
       if (rho <= tolerance_ && (small || (stagnant && last_was_newton))) break;
       const bool stalled = last_was_newton && (small || stagnant) && !(rho < previous_rho);
@@ -123,7 +123,7 @@ bool NewtonKleinmanSolver::iterate(const MatrixRef& A, const MatrixRef& P0, bool
     if (taken == max_iterations_ && chord_taken) return false;
     if (taken == max_iterations_)
       fail("Newton–Kleinman did not converge in " + std::to_string(taken) + " iterations (residual ρ " + num(rho) +
-           ", last relative step " + num(step / std::max(1.0, current_.P.norm())) + ", tolerance " +
+           ", last relative step " + num(step / std::max(1.0, care::frobenius_norm(current_.P))) + ", tolerance " +
            num(tolerance_) + ")");
     if (newton_next) {
       try {
@@ -161,7 +161,7 @@ bool NewtonKleinmanSolver::iterate(const MatrixRef& A, const MatrixRef& P0, bool
     newton_next = false;
     ++accepted;
     previous_step = step;
-    step = delta_.norm();
+    step = care::frobenius_norm(delta_);
     previous_rho = rho;
     std::swap(current_, next_);
   }
@@ -214,7 +214,7 @@ const CareResult& NewtonKleinmanSolver::solve(const MatrixRef& A, const MatrixRe
     for (Index i = 0; i < n_; ++i)
       result_.closed_loop_eigenvalues(i) = {lyapunov_.eigenvalues_real()(i), lyapunov_.eigenvalues_imag()(i)};
   }
-  result_.relative_residual = current_.Res.norm() / std::max(1.0, q_norm_);
+  result_.relative_residual = care::frobenius_norm(current_.Res) / std::max(1.0, q_norm_);
   result_.iterations = steps;
   result_.sign_iterations = 0;
   return result_;

@@ -83,7 +83,7 @@ struct CareSolver::Workspace {
   Index n, m;
   double g_norm = 0.0;
   MatrixXd H, H_s;  // H = [A, −G; −Q, −A'] and D⁻¹ H D
-  Eigen::VectorXd d;
+  Eigen::VectorXd d, d_balance;
   MatrixSignSolver sign;
   MatrixXd lhs, rhs;  // [S12; S22 + I] and −[S11 + I; S21]
   Eigen::VectorXd qr_coefficients, qr_workspace;
@@ -99,7 +99,7 @@ struct CareSolver::Workspace {
 };
 
 CareSolver::Workspace::Workspace(const MatrixRef& Q, const MatrixRef& R_, CareMethod method_, StabilityProof proof_)
-    : method(method_), proof(proof_), R(R_), n(Q.rows()), m(R_.rows()), H(2 * n, 2 * n), H_s(2 * n, 2 * n), d(2 * n),
+    : method(method_), proof(proof_), R(R_), n(Q.rows()), m(R_.rows()), H(2 * n, 2 * n), H_s(2 * n, 2 * n), d(2 * n), d_balance(2 * n),
       sign(2 * n), lhs(2 * n, n), rhs(2 * n, n), qr_coefficients(n), qr_workspace(n), U(2 * n, 2 * n), U1(n, n), X(n, n),
       wr(2 * n), wi(2 * n), lu_work(4 * n), bwork(2 * n), pivots(n), lu_iwork(n), Ak(n, n), delta(n, n),
       lyapunov(std::max<Index>(n, 1)), certificate(n), eigen(n) {
@@ -132,7 +132,7 @@ void CareSolver::Workspace::form_hamiltonian(const MatrixRef& A) {
   H.topRightCorner(n, n).noalias() = -w.W.transpose() * w.W;
   H.bottomLeftCorner(n, n) = -w.Q;
   H.bottomRightCorner(n, n) = -A.transpose();
-  g_norm = H.topRightCorner(n, n).norm();
+  g_norm = care::frobenius_norm(H.topRightCorner(n, n));
 }
 
 void CareSolver::Workspace::scale_hamiltonian() {
@@ -149,7 +149,8 @@ void CareSolver::Workspace::equilibrate() {
   const double q_norm = H.bottomLeftCorner(n, n).cwiseAbs().colwise().sum().maxCoeff();
   const double g_1norm = H.topRightCorner(n, n).cwiseAbs().colwise().sum().maxCoeff();
   d.setOnes();
-  if (q_norm > 0.0 && g_1norm > 0.0) d.tail(n).setConstant(std::sqrt(q_norm / g_1norm));
+  // The square roots apart: q_norm / g_1norm overflows or underflows for weights scaled by 1e±170.
+  if (q_norm > 0.0 && g_1norm > 0.0) d.tail(n).setConstant(std::sqrt(q_norm) / std::sqrt(g_1norm));
   scale_hamiltonian();
 }
 
@@ -157,15 +158,20 @@ void CareSolver::Workspace::equilibrate() {
 // scaled, and on the helicopter plant the unbalanced Schur solution was off by 1.8e-5. D is
 // computed on H without its diagonal, as scipy does: LAPACK ≥ 3.5 dgebal counts the diagonal in
 // its norms, and the large diagonal of A and −A' then hides the imbalance of G and Q (CAREX 2.1
-// went from 2e-5 to 1e-16 relative error, 2.7 from 1e-3 to 1e-10).
+// went from 2e-5 to 1e-16 relative error, 2.7 from 1e-3 to 1e-10). dgebal starts from the
+// equilibrated H: alone, it left weights scaled by 1e50 (Q·s, R·s, hence P·s) with a balanced H
+// of norm 5e18 and refused them as having eigenvalues on the imaginary axis; from the
+// equilibrated H, whose blocks do not depend on s, the paper's problem is solved to 3e-15 from
+// s = 1e-170 to 1e200, and the accuracy on random problems stayed where it was (docs/performance.md).
 void CareSolver::Workspace::balance() {
   const auto n2 = static_cast<lapack_int>(2 * n);
-  H_s = H;
+  equilibrate();
   H_s.diagonal().setZero();
   lapack_int ilo = 0;
   lapack_int ihi = 0;
-  if (LAPACKE_dgebal_work(LAPACK_COL_MAJOR, 'S', n2, H_s.data(), n2, &ilo, &ihi, d.data()) != 0)
+  if (LAPACKE_dgebal_work(LAPACK_COL_MAJOR, 'S', n2, H_s.data(), n2, &ilo, &ihi, d_balance.data()) != 0)
     fail("balancing the Hamiltonian failed (LAPACK dgebal)");
+  d.array() *= d_balance.array();
   scale_hamiltonian();
 }
 
@@ -214,7 +220,7 @@ void CareSolver::Workspace::schur_solution() {
   balance();
   const auto n2 = static_cast<lapack_int>(2 * n);
   const auto n1 = static_cast<lapack_int>(n);
-  const double h_norm = H_s.norm();
+  const double h_norm = care::frobenius_norm(H_s);
   lapack_int stable_count = 0;
   const lapack_int info = LAPACKE_dgees_work(LAPACK_COL_MAJOR, 'V', 'S', is_stable, n2, H_s.data(), n2,
                                              &stable_count, wr.data(), wi.data(), U.data(), n2, schur_work.data(),
@@ -264,7 +270,8 @@ void CareSolver::Workspace::schur_solution() {
 void CareSolver::Workspace::evaluate(const MatrixRef& A, Candidate& c) const {
   c.WP.noalias() = w.W * c.P;
   care::care_residual(A, w, c.P, c.WP, c.Res);
-  c.eta = care::normwise_residual(c.Res.norm(), w.Q.norm(), A.norm(), g_norm, c.P.norm());
+  c.eta = care::normwise_residual(care::frobenius_norm(c.Res), care::frobenius_norm(w.Q), care::frobenius_norm(A), g_norm,
+                                  care::frobenius_norm(c.P));
 }
 
 // Returns the refinement steps taken; candidate is replaced only by better ones.
@@ -320,7 +327,7 @@ const CareResult& CareSolver::Workspace::finish(const MatrixRef& A, const Matrix
       fail("the solution is not stabilizing: A − BK has an eigenvalue with Re λ = " + num(max_real) +
            kStabilizabilityHint);
   }
-  result.relative_residual = care::relative_to_q(candidate.Res.norm(), w);
+  result.relative_residual = care::relative_to_q(care::frobenius_norm(candidate.Res), w);
   result.P = candidate.P;
   result.iterations = iterations;
   return result;

@@ -10,6 +10,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <iostream>
 #include <limits>
 #include <random>
@@ -59,13 +60,14 @@ Residual residual_of(const CareProblem& p, const MatrixXd& P_double) {
   const Long G = B * R_inverse * B.transpose();
   const Long AtP = A.transpose() * P;
   const Long PGP = P * G * P;
-  const double res = static_cast<double>((AtP + AtP.transpose() - PGP + Q).norm());
-  const double terms = static_cast<double>(Q.norm() + 2.0L * AtP.norm() + PGP.norm());
+  const long double res = (AtP + AtP.transpose() - PGP + Q).norm();
+  const long double terms = Q.norm() + 2.0L * AtP.norm() + PGP.norm();
   const Long absolute = Q.cwiseAbs() + 2.0L * A.cwiseAbs().transpose() * P.cwiseAbs() +
                         P.cwiseAbs() * B.cwiseAbs() * R_inverse.cwiseAbs() * B.cwiseAbs().transpose() * P.cwiseAbs();
-  const double q_scale = std::max(1.0, p.Q.norm());
-  return {res / q_scale, res / terms,
-          static_cast<double>(p.A.rows()) * kEps * static_cast<double>(absolute.norm()) / q_scale};
+  // In long double too: its exponent range holds the squares of weights scaled by 1e±200.
+  const long double q_scale = std::max(1.0L, Q.norm());
+  return {static_cast<double>(res / q_scale), static_cast<double>(res / terms),
+          static_cast<double>(static_cast<long double>(p.A.rows()) * kEps * absolute.norm() / q_scale)};
 }
 
 bool stabilizes(const CareProblem& p, const MatrixXd& P) {
@@ -294,6 +296,38 @@ TEST(NewtonKleinman, TheZeroSolutionIsReached) {
                                               0.5 * MatrixXd::Identity(2, 2));
   EXPECT_EQ(result.P.norm(), 0.0);
   EXPECT_EQ(result.relative_residual, 0.0);
+}
+
+// (Q, R) → (sQ, sR) takes P to sP and leaves ρ as it was. At s = 1e-170 every entry of the residual
+// lies below 1e-154, where the sum of squares in Eigen's norm() underflows to 0, and at s = 1e200
+// above 1e154, where it overflows: Newton–Kleinman used to stop at once on ρ = 0, returning its
+// warm start and reporting a zero residual, or to throw "the residual is not finite"; the direct
+// solvers, whose scaling of the Hamiltonian overflowed (the sign function) or left it unbalanced
+// (the Schur method, already at s = 1e50), refused the equation.
+TEST(NewtonKleinman, WeightsScaledToTheEndsOfTheDoubleRangeGiveTheScaledSolution) {
+  const CareProblem p = bench::paper_care_problem();
+  const MatrixXd P = solve_care(p.A, p.B, p.Q, p.R).P;
+  for (const double s : {1e-170, 1e200}) {
+    SCOPED_TRACE("s = 1e" + std::to_string(std::lround(std::log10(s))));
+    CareProblem scaled = p;
+    scaled.Q *= s;
+    scaled.R *= s;
+    const MatrixXd P0 = (1.0 + 1e-3) * (s * P);
+    const std::vector<std::pair<std::string, std::function<CareResult()>>> solvers{
+        {"Newton–Kleinman", [&] { return solve_care_newton(scaled.A, scaled.B, scaled.Q, scaled.R, P0); }},
+        {"matrix sign", [&] { return solve_care(scaled.A, scaled.B, scaled.Q, scaled.R, CareMethod::matrix_sign); }},
+        {"Schur", [&] { return solve_care(scaled.A, scaled.B, scaled.Q, scaled.R, CareMethod::schur); }}};
+    for (const auto& [name, solve] : solvers) {
+      SCOPED_TRACE(name);
+      CareResult result;
+      ASSERT_NO_THROW(result = solve());
+      EXPECT_LE((result.P / s - P).norm(), 1e-9 * P.norm());
+      const Residual truth = residual_of(scaled, result.P);
+      EXPECT_GT(result.relative_residual, 0.0);
+      EXPECT_NEAR(result.relative_residual, truth.relative, truth.rounding);
+      EXPECT_LE(truth.to_terms, 1e-12);
+    }
+  }
 }
 
 // A solution of the CARE that does not stabilize, given as P0 to a solver that holds a Schur form:
