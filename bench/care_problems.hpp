@@ -44,6 +44,16 @@ inline CareProblem random_care_problem(std::string name, Eigen::Index n, Eigen::
   return p;
 }
 
+// The same A and B with Q = I and R = I: the usual random test problem of the CARE literature,
+// whose Hamiltonian is far better scaled than with the paper's seven decades of weights. Draws
+// from rng as random_care_problem does.
+inline CareProblem unit_weight_care_problem(std::string name, Eigen::Index n, Eigen::Index m, std::mt19937_64& rng) {
+  CareProblem p = random_care_problem(std::move(name), n, m, rng);
+  p.Q = Eigen::MatrixXd::Identity(n, n);
+  p.R = Eigen::MatrixXd::Identity(m, m);
+  return p;
+}
+
 // A problem whose R is nearly singular, as CAREX 2.2: R = U diag(1, 10^−a, 10^−b) U' … with U a
 // random rotation, a uniform in [0, 1] and κ(R) = 10^b, b uniform in [log10_kappa_low,
 // log10_kappa_high]; A and B as above, Q = C'C with a random square C.

@@ -63,14 +63,20 @@ Problem complete(thetad::bench::CareProblem care_problem, std::mt19937_64& rng) 
   return p;
 }
 
-// Seeded std::mt19937_64 (seed 1000n + m).
-Problem random_problem(Index n, Index m) {
+// Seeded std::mt19937_64 (seed 1000n + m): the paper's weight spread, or Q = I, R = I (name
+// suffix _unit, the same A and B).
+enum class Weights { paper_spread, unit };
+Problem random_problem(Index n, Index m, Weights weights = Weights::paper_spread) {
   std::mt19937_64 rng(1000 * static_cast<std::uint64_t>(n) + static_cast<std::uint64_t>(m));
   // Appended piece by piece: "n" + std::to_string(n) + … draws a false -Wrestrict from GCC 12 at -O3.
   std::string name = "n";
   name += std::to_string(n);
   name += "_m";
   name += std::to_string(m);
+  if (weights == Weights::unit) {
+    name += "_unit";
+    return complete(thetad::bench::unit_weight_care_problem(std::move(name), n, m, rng), rng);
+  }
   return complete(thetad::bench::random_care_problem(std::move(name), n, m, rng), rng);
 }
 
@@ -331,6 +337,10 @@ int main(int argc, char** argv) {
     problems.push_back(random_problem(n, m));
   // The sweep of the solve_care target (issue 16): n = 10 … 60, m = n/3.
   for (const Index n : {10, 20, 30, 40, 50, 60}) problems.push_back(random_problem(n, n / 3));
+  // The same sweep with Q = I, R = I, for the direct solvers only.
+  static std::vector<Problem> unit_weight_problems;
+  for (const Index n : {10, 12, 18, 20, 30, 40, 50, 60})
+    unit_weight_problems.push_back(random_problem(n, n / 3, Weights::unit));
 
   using Function = void (*)(benchmark::State&, const Problem&);
   const std::pair<const char*, Function> every_size[] = {
@@ -352,6 +362,15 @@ int main(int argc, char** argv) {
       {"alt_lyapunov_packed_lu", bm_alt_packed_lu},
       {"alt_lyapunov_schur_precomputed", bm_alt_schur_precomputed},
   };
+  const std::pair<const char*, Function> direct[] = {
+      {"solve_care", bm_solve_care<thetad::CareMethod::automatic>},
+      {"care_solver", bm_care_solver},
+      {"sb02md", bm_sb02md},
+  };
+  for (const Problem& p : unit_weight_problems)
+    for (const auto& [name, function] : direct)
+      benchmark::RegisterBenchmark((std::string(name) + "/" + p.name).c_str(), function, p)
+          ->Unit(benchmark::kMicrosecond);
   for (const Problem& p : problems) {
     for (const auto& [name, function] : every_size)
       benchmark::RegisterBenchmark((std::string(name) + "/" + p.name).c_str(), function, p)
