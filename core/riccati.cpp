@@ -162,7 +162,7 @@ void CareSolver::Workspace::equilibrate() {
 // equilibrated H: alone, it left weights scaled by 1e50 (Q·s, R·s, hence P·s) with a balanced H
 // of norm 5e18 and refused them as having eigenvalues on the imaginary axis; from the
 // equilibrated H, whose blocks do not depend on s, the paper's problem is solved to 3e-15 from
-// s = 1e-170 to 1e200, and the accuracy on random problems stayed where it was (docs/performance.md).
+// s = 1e-300 to 1e300, and the accuracy on random problems stayed where it was (docs/performance.md).
 void CareSolver::Workspace::balance() {
   const auto n2 = static_cast<lapack_int>(2 * n);
   equilibrate();

@@ -298,16 +298,16 @@ TEST(NewtonKleinman, TheZeroSolutionIsReached) {
   EXPECT_EQ(result.relative_residual, 0.0);
 }
 
-// (Q, R) → (sQ, sR) takes P to sP and leaves ρ as it was. At s = 1e-170 every entry of the residual
-// lies below 1e-154, where the sum of squares in Eigen's norm() underflows to 0, and at s = 1e200
-// above 1e154, where it overflows: Newton–Kleinman used to stop at once on ρ = 0, returning its
+// (Q, R) → (sQ, sR) takes P to sP and leaves ρ as it was. From s = 1e-170 down every entry of the
+// residual lies below 1e-154, where the sum of squares in Eigen's norm() underflows to 0, and from
+// s = 1e200 up above 1e154, where it overflows: Newton–Kleinman used to stop at once on ρ = 0, returning its
 // warm start and reporting a zero residual, or to throw "the residual is not finite"; the direct
 // solvers, whose scaling of the Hamiltonian overflowed (the sign function) or left it unbalanced
 // (the Schur method, already at s = 1e50), refused the equation.
 TEST(NewtonKleinman, WeightsScaledToTheEndsOfTheDoubleRangeGiveTheScaledSolution) {
   const CareProblem p = bench::paper_care_problem();
   const MatrixXd P = solve_care(p.A, p.B, p.Q, p.R).P;
-  for (const double s : {1e-170, 1e200}) {
+  for (const double s : {1e-300, 1e-170, 1e200, 1e300}) {
     SCOPED_TRACE("s = 1e" + std::to_string(std::lround(std::log10(s))));
     CareProblem scaled = p;
     scaled.Q *= s;
