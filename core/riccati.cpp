@@ -99,10 +99,10 @@ struct CareSolver::Workspace {
 };
 
 CareSolver::Workspace::Workspace(const MatrixRef& Q, const MatrixRef& R_, CareMethod method_, StabilityProof proof_)
-    : method(method_), proof(proof_), R(R_), n(Q.rows()), m(R_.rows()), H(2 * n, 2 * n), H_s(2 * n, 2 * n), d(2 * n), d_balance(2 * n),
-      sign(2 * n), lhs(2 * n, n), rhs(2 * n, n), qr_coefficients(n), qr_workspace(n), U(2 * n, 2 * n), U1(n, n), X(n, n),
-      wr(2 * n), wi(2 * n), lu_work(4 * n), bwork(2 * n), pivots(n), lu_iwork(n), Ak(n, n), delta(n, n),
-      lyapunov(std::max<Index>(n, 1)), certificate(n), eigen(n) {
+    : method(method_), proof(proof_), R(R_), n(Q.rows()), m(R_.rows()), H(2 * n, 2 * n), H_s(2 * n, 2 * n), d(2 * n),
+      d_balance(2 * n), sign(2 * n), lhs(2 * n, n), rhs(2 * n, n), qr_coefficients(n), qr_workspace(n),
+      U(2 * n, 2 * n), U1(n, n), X(n, n), wr(2 * n), wi(2 * n), lu_work(4 * n), bwork(2 * n), pivots(n), lu_iwork(n),
+      Ak(n, n), delta(n, n), lyapunov(std::max<Index>(n, 1)), certificate(n), eigen(n) {
   if (n == 0 || Q.cols() != n) fail("Q must be square and non-empty, but Q is " + care::shape(Q));
   if (m == 0 || R_.cols() != m) fail("R must be square and non-empty, but R is " + care::shape(R_));
   if (!Q.allFinite()) fail("Q has a non-finite entry (NaN or Inf)");
@@ -270,8 +270,8 @@ void CareSolver::Workspace::schur_solution() {
 void CareSolver::Workspace::evaluate(const MatrixRef& A, Candidate& c) const {
   c.WP.noalias() = w.W * c.P;
   care::care_residual(A, w, c.P, c.WP, c.Res);
-  c.eta = care::normwise_residual(care::frobenius_norm(c.Res), care::frobenius_norm(w.Q), care::frobenius_norm(A), g_norm,
-                                  care::frobenius_norm(c.P));
+  c.eta = care::normwise_residual(care::frobenius_norm(c.Res), care::frobenius_norm(w.Q), care::frobenius_norm(A),
+                                  g_norm, care::frobenius_norm(c.P));
 }
 
 // Returns the refinement steps taken; candidate is replaced only by better ones.

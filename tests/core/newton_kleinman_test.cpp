@@ -64,7 +64,7 @@ Residual residual_of(const CareProblem& p, const MatrixXd& P_double) {
   const long double terms = Q.norm() + 2.0L * AtP.norm() + PGP.norm();
   const Long absolute = Q.cwiseAbs() + 2.0L * A.cwiseAbs().transpose() * P.cwiseAbs() +
                         P.cwiseAbs() * B.cwiseAbs() * R_inverse.cwiseAbs() * B.cwiseAbs().transpose() * P.cwiseAbs();
-  // In long double too: its exponent range holds the squares of weights scaled by 1e±200.
+  // In long double too: its exponent range holds the squares of weights scaled by 1e±300.
   const long double q_scale = std::max(1.0L, Q.norm());
   return {static_cast<double>(res / q_scale), static_cast<double>(res / terms),
           static_cast<double>(static_cast<long double>(p.A.rows()) * kEps * absolute.norm() / q_scale)};
@@ -300,10 +300,10 @@ TEST(NewtonKleinman, TheZeroSolutionIsReached) {
 
 // (Q, R) → (sQ, sR) takes P to sP and leaves ρ as it was. From s = 1e-170 down every entry of the
 // residual lies below 1e-154, where the sum of squares in Eigen's norm() underflows to 0, and from
-// s = 1e200 up above 1e154, where it overflows: Newton–Kleinman used to stop at once on ρ = 0, returning its
-// warm start and reporting a zero residual, or to throw "the residual is not finite"; the direct
-// solvers, whose scaling of the Hamiltonian overflowed (the sign function) or left it unbalanced
-// (the Schur method, already at s = 1e50), refused the equation.
+// s = 1e200 up above 1e154, where it overflows: Newton–Kleinman used to stop at once on ρ = 0,
+// returning its warm start and reporting a zero residual, or to throw "the residual is not
+// finite"; the direct solvers, whose scaling of the Hamiltonian overflowed (the sign function) or
+// left it unbalanced (the Schur method, already at s = 1e50), refused the equation.
 TEST(NewtonKleinman, WeightsScaledToTheEndsOfTheDoubleRangeGiveTheScaledSolution) {
   const CareProblem p = bench::paper_care_problem();
   const MatrixXd P = solve_care(p.A, p.B, p.Q, p.R).P;
