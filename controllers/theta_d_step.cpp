@@ -42,30 +42,47 @@ bool all_zero(const Eigen::MatrixBase<Derived>& a) {
   return a.cwiseAbs().sum() == 0.0;
 }
 
-// sum += left · right, right having as many rows as left has columns. For a fixed number of rows N
-// each column of the sum is accumulated in registers, its rows split into the longest run of a
-// multiple of 8 and the rest: Eigen's own product at these sizes packs its operands (GEMM), and
-// under AVX-512 Eigen uses 128-bit packets for a fixed 18-row vector (18 is a multiple of neither
-// 8 nor 4), where the 16-row run takes 512-bit ones. Meant for the helicopter's N = 18: a much
-// larger N would run out of registers.
+// A fixed-size column split for product_columns: its longest run of a multiple of 8 rows, and the rest.
+template <int N>
+constexpr int kHeadRows = N / 8 * 8;
+template <int N>
+constexpr int kTailRows = N - kHeadRows<N>;
+
+// sum = start + left · right column by column, right having as many rows as left has columns and
+// start(j, head, tail) setting the rows of column j before the product is added. For a fixed
+// number of rows N each column of the sum is accumulated in registers, its rows split into the
+// longest run of a multiple of 8 and the rest: Eigen's own product at these sizes packs its
+// operands (GEMM), and under AVX-512 Eigen uses 128-bit packets for a fixed 18-row vector (18 is a
+// multiple of neither 8 nor 4), where the 16-row run takes 512-bit ones. Meant for the
+// helicopter's N = 18: a much larger N would run out of registers.
+template <int N, class Sum, class Left, class Right, class Start>
+void product_columns(Sum&& sum, const Left& left, const Right& right, Start&& start) {
+  static_assert(N >= 8 && N <= 32, "product_columns: a fixed N of 8 to 32 rows");
+  eigen_assert(left.cols() == right.rows() && sum.cols() == right.cols());
+  constexpr int kHead = kHeadRows<N>, kTail = kTailRows<N>;
+  for (Eigen::Index j = 0; j < sum.cols(); ++j) {
+    Eigen::Matrix<double, kHead, 1> head;
+    Eigen::Matrix<double, kTail, 1> tail;
+    start(j, head, tail);
+    for (Eigen::Index k = 0; k < right.rows(); ++k) {
+      head.noalias() += left.col(k).template head<kHead>() * right(k, j);
+      tail.noalias() += left.col(k).template tail<kTail>() * right(k, j);
+    }
+    sum.col(j).template head<kHead>() = head;
+    sum.col(j).template tail<kTail>() = tail;
+  }
+}
+
+// sum += left · right (product_columns for a fixed N, Eigen's product for a dynamic one).
 template <int N, class Sum, class Left, class Right>
 void add_product(Sum&& sum, const Left& left, const Right& right) {
-  static_assert(N == Eigen::Dynamic || (N >= 8 && N <= 32), "add_product: a fixed N of 8 to 32 rows");
-  eigen_assert(left.cols() == right.rows() && sum.cols() == right.cols());
   if constexpr (N == Eigen::Dynamic) {
     sum.noalias() += left * right;
   } else {
-    constexpr int kHead = N / 8 * 8, kTail = N - kHead;
-    for (Eigen::Index j = 0; j < sum.cols(); ++j) {
-      Eigen::Matrix<double, kHead, 1> head = sum.col(j).template head<kHead>();
-      Eigen::Matrix<double, kTail, 1> tail = sum.col(j).template tail<kTail>();
-      for (Eigen::Index k = 0; k < right.rows(); ++k) {
-        head.noalias() += left.col(k).template head<kHead>() * right(k, j);
-        tail.noalias() += left.col(k).template tail<kTail>() * right(k, j);
-      }
-      sum.col(j).template head<kHead>() = head;
-      sum.col(j).template tail<kTail>() = tail;
-    }
+    product_columns<N>(sum, left, right, [&](Eigen::Index j, auto& head, auto& tail) {
+      head = sum.col(j).template head<kHeadRows<N>>();
+      tail = sum.col(j).template tail<kTailRows<N>>();
+    });
   }
 }
 
@@ -156,9 +173,6 @@ void ThetaDController::form_right_side(std::size_t i) {
   // gathered side by side so that the sum is one product.
   const auto previous = view<N, N>(T_[i - 1]);
   auto sum = view<N, N>(M_);
-  sum.setZero();
-  for (std::size_t k = 0; k < a_tilde_count_; ++k)
-    sum.col(a_tilde_cols_[k]) -= a_tilde_values_[k] * previous.col(a_tilde_rows_[k]);
   auto left = view<N, Eigen::Dynamic>(left_);
   auto right = view<N, Eigen::Dynamic>(right_);
   Eigen::Index rank = 0;
@@ -170,7 +184,27 @@ void ThetaDController::form_right_side(std::size_t i) {
   add(1.0, view<N, twice(M)>(products_[0]).template leftCols<M>(m), view<N, twice(M)>(products_[i - 1]).template rightCols<M>(m));
   for (std::size_t j = 1; j < i - j; ++j) add(1.0, view<N, M>(pairs_[j]), view<N, M>(pairs_[i - j]));
   if (i % 2 == 0) add(0.5, view<N, M>(pairs_[i / 2]), view<N, M>(pairs_[i / 2]));
-  add_product<N>(sum, left.leftCols(rank), right.leftCols(rank).transpose());
+  if constexpr (N == Eigen::Dynamic) {
+    sum.setZero();
+    for (std::size_t k = 0; k < a_tilde_count_; ++k)
+      sum.col(a_tilde_cols_[k]) -= a_tilde_values_[k] * previous.col(a_tilde_rows_[k]);
+    sum.noalias() += left.leftCols(rank) * right.leftCols(rank).transpose();
+  } else {
+    // −T_{i−1} Ã enters each column's registers before the rank-m products: gather_deviation lists
+    // Ã column by column, so one pass over it serves the columns in order.
+    std::size_t k = 0;
+    product_columns<N>(sum, left.leftCols(rank), right.leftCols(rank).transpose(),
+                       [&](Eigen::Index j, auto& head, auto& tail) {
+                         head.setZero();
+                         tail.setZero();
+                         for (; k < a_tilde_count_ && a_tilde_cols_[k] == j; ++k) {
+                           const auto column = previous.col(a_tilde_rows_[k]);
+                           head -= a_tilde_values_[k] * column.template head<kHeadRows<N>>();
+                           tail -= a_tilde_values_[k] * column.template tail<kTailRows<N>>();
+                         }
+                       });
+    if (k != a_tilde_count_) throw Error("theta-d: the entries of Ã are not in column order");
+  }
   for (Eigen::Index a = 0; a < unknowns; ++a)
     packed_right_[a] = sum(unknown_row_[a], unknown_col_[a]) + sum(unknown_col_[a], unknown_row_[a]);
 }
