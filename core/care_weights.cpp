@@ -66,6 +66,7 @@ Weights prepare_weights(const MatrixRef& Q, const MatrixRef& R) {
   check_symmetric("R", R);
   Weights w;
   w.Q = 0.5 * (Q + Q.transpose());
+  w.q_norm = frobenius_norm(w.Q);
   const auto [q_min, q_max] = spectrum_range(w.Q);
   const double q_scale = std::max(std::abs(q_min), std::abs(q_max));
   if (q_min < -100.0 * static_cast<double>(Q.rows()) * kEps * q_scale)
@@ -105,7 +106,7 @@ double frobenius_norm(const MatrixRef& M) {
 }
 
 double relative_to_q(double residual_norm, const Weights& w) {
-  return residual_norm / std::max(1.0, frobenius_norm(w.Q));
+  return residual_norm / std::max(1.0, w.q_norm);
 }
 
 double normwise_residual(double residual_norm, double q_norm, double a_norm, double g_norm, double p_norm) {

@@ -25,6 +25,7 @@ void check_inputs(const MatrixRef& A, const MatrixRef& B, const MatrixRef& Q, co
 // P G P = (WP)'(WP) is exactly symmetric, and K = R⁻¹B'P = L'⁻¹(WP).
 struct Weights {
   Eigen::MatrixXd Q;  // symmetrized
+  double q_norm = 0.0;  // ‖Q‖_F (frobenius_norm), for the residuals measured against it
   Eigen::MatrixXd L;  // lower Cholesky factor of R
   Eigen::MatrixXd W;  // L⁻¹ B', m×n: set by set_input_matrix
 };

@@ -39,7 +39,7 @@ bool LyapunovCertificate::proves_hurwitz(const care::MatrixRef& A, const care::W
   const double m = static_cast<double>(WP.rows());
   const double wp_norm = care::frobenius_norm(WP);
   const double p_norm = care::frobenius_norm(P);
-  const double terms = care::frobenius_norm(w.Q) + 2.0 * care::frobenius_norm(A) * p_norm + 2.0 * wp_norm * wp_norm;
+  const double terms = w.q_norm + 2.0 * care::frobenius_norm(A) * p_norm + 2.0 * wp_norm * wp_norm;
   const double rounding =
       (n + m + 4.0) * kEps * terms + 4.0 * n * kEps * care::frobenius_norm(w.W) * p_norm * wp_norm;
   return positive_definite(M_, rounding);

@@ -54,7 +54,6 @@ NewtonKleinmanSolver::NewtonKleinmanSolver(const MatrixRef& Q, const MatrixRef& 
     fail("Newton–Kleinman needs tolerance > 0 and max_iterations ≥ 1 (got " + num(tolerance) + ", " +
          std::to_string(max_iterations) + ")");
   weights_ = care::prepare_weights(Q, R);
-  q_norm_ = care::frobenius_norm(weights_.Q);
   weights_.W.resize(m_, n_);
   for (Iterate* it : {&current_, &next_}) {
     it->P.resize(n_, n_);
@@ -73,7 +72,7 @@ void NewtonKleinmanSolver::evaluate(const MatrixRef& A, Iterate& it) {
   it.WP.noalias() = weights_.W * it.P;
   const double AtP_norm = care::care_residual(A, weights_, it.P, it.WP, it.Res);
   WPWPt_.noalias() = it.WP * it.WP.transpose();  // ‖PGP‖_F = ‖(WP)'(WP)‖_F = ‖(WP)(WP)'‖_F, m×m
-  it.rho = relative_to_terms(care::frobenius_norm(it.Res), q_norm_, AtP_norm, care::frobenius_norm(WPWPt_));
+  it.rho = relative_to_terms(care::frobenius_norm(it.Res), weights_.q_norm, AtP_norm, care::frobenius_norm(WPWPt_));
 }
 
 void NewtonKleinmanSolver::factor_closed_loop(const MatrixRef& A, const Iterate& it) {
@@ -214,7 +213,7 @@ const CareResult& NewtonKleinmanSolver::solve(const MatrixRef& A, const MatrixRe
     for (Index i = 0; i < n_; ++i)
       result_.closed_loop_eigenvalues(i) = {lyapunov_.eigenvalues_real()(i), lyapunov_.eigenvalues_imag()(i)};
   }
-  result_.relative_residual = care::frobenius_norm(current_.Res) / std::max(1.0, q_norm_);
+  result_.relative_residual = care::relative_to_q(care::frobenius_norm(current_.Res), weights_);
   result_.iterations = steps;
   result_.sign_iterations = 0;
   return result_;

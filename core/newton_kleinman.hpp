@@ -94,7 +94,6 @@ class NewtonKleinmanSolver {
   Eigen::MatrixXd R_;  // as given: only for check_inputs' sizes
   double tolerance_;
   int max_iterations_;
-  double q_norm_;
   StabilityProof proof_;
   Eigen::Index n_, m_;
   LyapunovWorkspace lyapunov_;

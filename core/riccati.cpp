@@ -270,8 +270,8 @@ void CareSolver::Workspace::schur_solution() {
 void CareSolver::Workspace::evaluate(const MatrixRef& A, Candidate& c) const {
   c.WP.noalias() = w.W * c.P;
   care::care_residual(A, w, c.P, c.WP, c.Res);
-  c.eta = care::normwise_residual(care::frobenius_norm(c.Res), care::frobenius_norm(w.Q), care::frobenius_norm(A),
-                                  g_norm, care::frobenius_norm(c.P));
+  c.eta = care::normwise_residual(care::frobenius_norm(c.Res), w.q_norm, care::frobenius_norm(A), g_norm,
+                                  care::frobenius_norm(c.P));
 }
 
 // Returns the refinement steps taken; candidate is replaced only by better ones.
