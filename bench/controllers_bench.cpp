@@ -33,7 +33,7 @@
 #include "controllers/theta_d.hpp"
 #include "core/helicopter/helicopter.hpp"
 #include "core/sim/recording_law.hpp"
-#include "core/sim/simulator.hpp"
+#include "core/sim/helicopter_disturbances.hpp"
 #include "scenarios/scenario.hpp"
 #include "tests/controllers/every_pass_settings.hpp"
 

@@ -1,10 +1,22 @@
 #pragma once
 
+#include <string>
+#include <vector>
+
 #include <Eigen/Core>
 
 #include "core/control_law.hpp"
+#include "core/log_column.hpp"
 
 namespace thetad {
+
+// A state entry that the reference's position commands: the helicopter's x_p is commanded by
+// x_c, the first entry of Reference::position.
+struct TrackedState {
+  int index = 0;      // into the state
+  std::string axis;   // what results call its error ("x")
+  LogColumn command;  // the commanded value's log column ("x_c", "m")
+};
 
 // What a controller designed for this plant starts from where its settings say nothing.
 struct DesignDefaults {
@@ -57,6 +69,24 @@ class SdcPlant {
     v = measured;
   }
 
+  // The tracking vector on the plant's true state, for a run's cost: `error_integral` is the
+  // integral of the true tracking error of tracked_states() (PositionIntegral rule, zeros beyond
+  // them). The default is tracking_vector() of the true state.
+  virtual void true_tracking_vector(const Eigen::Ref<const Eigen::VectorXd>& x, const Reference& reference,
+                                    const Eigen::Vector3d& error_integral, Eigen::Ref<Eigen::VectorXd> v) const {
+    (void)error_integral;
+    tracking_vector(x, reference, v);
+  }
+
+  // The states that Reference::position commands, in its order (at most three): a run's tracking
+  // error is x[index] minus the command. None (the default) for a regulator.
+  virtual std::vector<TrackedState> tracked_states() const { return {}; }
+
+  // Names and units of the states and inputs in index order, for logs, plots and Python; the
+  // defaults are x_0, x_1, ... and u_0, u_1, ... without units.
+  virtual std::vector<LogColumn> state_columns() const { return numbered_columns("x_", state_dim()); }
+  virtual std::vector<LogColumn> input_columns() const { return numbered_columns("u_", input_dim()); }
+
   // The plant knows what a sensible design starts from (the helicopter: the paper's weights and
   // hover thrust); a plant that does not say weighs every state and input alike around u0 = 0.
   virtual DesignDefaults design_defaults() const {
@@ -94,6 +124,13 @@ class SdcPlant {
     Coefficients c{Eigen::MatrixXd(state_dim(), state_dim()), Eigen::MatrixXd(state_dim(), input_dim())};
     sdc(x, u, c.F, c.B);
     return c;
+  }
+
+ private:
+  static std::vector<LogColumn> numbered_columns(const std::string& prefix, int count) {
+    std::vector<LogColumn> columns;
+    for (int i = 0; i < count; ++i) columns.push_back({prefix + std::to_string(i), ""});
+    return columns;
   }
 };
 

@@ -4,10 +4,12 @@
 #include <cstdio>
 
 #include "controllers/registry.hpp"
+#include "core/error.hpp"
 #include "core/text_file.hpp"
 #include "settings/settings.hpp"
 #include "experiment/build_info.hpp"
 #include "experiment/controller_build.hpp"
+#include "experiment/plant_registry.hpp"
 #include "experiment/scenario_files.hpp"
 #include "experiment/sha256.hpp"
 
@@ -28,10 +30,13 @@ Scenario load(const std::string& file_or_name, std::string& sha256) {
 Flight::Flight(const std::string& scenario, const RunControls& controls)
     : scenario_(at_speed(controls, load(scenario, provenance_.scenario_sha256))),
       settings_(scenario_.simulation_settings()),
-      initial_state_(offset_initial_state(controls, scenario_.initial_state)),
-      model_(heli::Parameters::nominal(), scenario_.model_options) {
+      initial_state_(offset_initial_state(controls, scenario_.initial_state)) {
+  const auto helicopter = std::make_shared<const heli::Helicopter>(heli::Parameters::nominal(), scenario_.model_options);
+  helicopter_ = helicopter.get();
+  plant_ = helicopter;
   apply(controls, settings_);
   provenance_.build = build_info();
+  provenance_.plant = "helicopter";
   provenance_.scenario_name = scenario_.name;
   // Absolute, so that a replay from another folder finds it.
   provenance_.scenario_file = std::filesystem::absolute(scenario_.source).lexically_normal().string();
@@ -43,6 +48,52 @@ Flight::Flight(const std::string& scenario, const RunControls& controls)
   if (controls.initial_offset) provenance_.initial_offset = entries(*controls.initial_offset);
   if (controls.initial_attitude_offset) provenance_.initial_attitude_offset = entries(*controls.initial_attitude_offset);
   provenance_.speed_scale = controls.speed_scale;
+  settings_.check_memory(log_width());
+}
+
+Flight Flight::of_plant(std::shared_ptr<const SdcPlant> plant, const std::string& name,
+                        const Eigen::VectorXd& initial_state, const RunControls& controls) {
+  if (!controls.duration) throw Error("plant " + name + ": its flight needs a duration (it has no scenario to say it)");
+  if (initial_state.size() != plant->state_dim())
+    throw Error("plant " + name + ": the initial state has " + std::to_string(initial_state.size()) +
+                " entries, the plant " + std::to_string(plant->state_dim()) + " states");
+  if (controls.initial_offset || controls.initial_attitude_offset || controls.speed_scale)
+    throw Error("plant " + name + ": initial offsets and speed scales apply to the helicopter's scenarios");
+  Flight flight;
+  flight.scenario_.name = name;
+  flight.scenario_.description = "the plant " + name + " regulated to the origin";
+  flight.scenario_.initial_state = initial_state;
+  flight.settings_ = sim::SimulationSettings::ideal();
+  apply(controls, flight.settings_);
+  flight.settings_.actuator_limits.enabled = false;  // the helicopter's servos, nothing to do with this plant
+  flight.scenario_.duration = flight.settings_.duration;
+  flight.initial_state_ = initial_state;
+  flight.plant_ = std::move(plant);
+  flight.provenance_.build = build_info();
+  flight.provenance_.plant = name;
+  flight.provenance_.scenario_name = name;
+  flight.provenance_.initial_state.assign(initial_state.data(), initial_state.data() + initial_state.size());
+  flight.provenance_.seed = flight.settings_.seed;
+  flight.provenance_.dt = flight.settings_.dt;
+  flight.settings_.check_memory(flight.log_width());
+  return flight;
+}
+
+Flight Flight::of_plant(const std::string& name, const std::optional<Eigen::VectorXd>& initial_state,
+                        const RunControls& controls) {
+  NamedPlant named = PlantRegistry::instance().make(name, YAML::Node());
+  return of_plant(std::move(named.plant), name, initial_state ? *initial_state : named.initial_state, controls);
+}
+
+const heli::Helicopter& Flight::model() const {
+  if (!helicopter_) throw Error("the flight of plant " + scenario_.name + " has no helicopter to give this command");
+  return *helicopter_;
+}
+
+std::unique_ptr<sim::Disturbances> Flight::make_disturbances() const {
+  if (helicopter_)
+    return std::make_unique<sim::HelicopterDisturbances>(settings_, helicopter_->parameters(), helicopter_->options());
+  return std::make_unique<sim::NoDisturbances>(*plant_);
 }
 
 std::string Flight::disturbances() const {
@@ -69,11 +120,14 @@ void Flight::set_keep_log(bool keep) {
   sim::SimulationSettings settings = settings_;
   settings.keep_log = keep;
   settings.validate();
+  settings.check_memory(log_width());
   settings_ = settings;
 }
 
+std::size_t Flight::log_width() const { return sim::log_schema(*plant_, *make_disturbances()).size(); }
+
 PreparedController Flight::prepare(const ControllerSpec& spec) const {
-  ControllerContext context(model_, initial_state_, 0.0);
+  ControllerContext context(*plant_, initial_state_, 0.0);
   context.reference = &scenario_.trajectory;
   context.duration = settings_.duration;
   context.controller_period = settings_.controller_period();
@@ -92,8 +146,8 @@ RunResult Flight::fly(PreparedController& prepared, Progress* progress, const st
   if (progress) progress->start(heading.empty() ? prepared.spec.label + ":" : heading, settings_.duration);
   const auto start = std::chrono::steady_clock::now();
   const auto report = [progress](double t) { progress->update(t); };
-  sim::RunResult flown = sim::simulate(*prepared.controller, scenario_.trajectory, initial_state_, settings_,
-                                       heli::Parameters::nominal(), scenario_.model_options,
+  const std::unique_ptr<sim::Disturbances> disturbances = make_disturbances();
+  sim::RunResult flown = sim::simulate(*prepared.controller, *disturbances, scenario_.trajectory, initial_state_, settings_,
                                        progress ? std::function<void(double)>(report) : std::function<void(double)>());
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   result.summary = std::move(flown.summary);

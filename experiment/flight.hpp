@@ -1,13 +1,14 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 
 #include <yaml-cpp/yaml.h>
 
 #include "controllers/controller.hpp"
 #include "core/helicopter/helicopter.hpp"
-#include "core/sim/simulator.hpp"
+#include "core/sim/helicopter_disturbances.hpp"
 #include "experiment/controller_spec.hpp"
 #include "experiment/progress.hpp"
 #include "experiment/provenance.hpp"
@@ -27,28 +28,44 @@ struct PreparedController {
   std::string origin;
 };
 
-// A scenario read and ready to fly, with the controllers' model: the one place where a scenario,
-// run controls and controller specs become results, for every front end. Everything that can be
-// wrong with the files is found while building it and preparing the controllers, before anything
-// flies or is written.
+// A plant, what it is asked to fly and the controllers' model of it, ready to fly: the one place
+// where a scenario or a plant, run controls and controller specs become results, for every front
+// end. Everything that can be wrong with the files is found while building it and preparing the
+// controllers, before anything flies or is written.
 class Flight {
  public:
-  // `scenario`: a file, or the name of a shipped scenario (find_scenario).
+  // The helicopter through `scenario`: a file, or the name of a shipped scenario (find_scenario),
+  // with the paper's disturbances (sim::HelicopterDisturbances) as the scenario and controls set them.
   explicit Flight(const std::string& scenario, const RunControls& controls = {});
+  // `plant` (named `name` in results) as it is (sim::NoDisturbances), from `initial_state`,
+  // regulated to the origin for controls.duration (required). Throws thetad::Error naming what is
+  // wrong.
+  static Flight of_plant(std::shared_ptr<const SdcPlant> plant, const std::string& name,
+                         const Eigen::VectorXd& initial_state, const RunControls& controls);
+  // The same for the plant `name` of the registry (PlantRegistry), from its own initial state
+  // unless `initial_state` is given.
+  static Flight of_plant(const std::string& name, const std::optional<Eigen::VectorXd>& initial_state,
+                         const RunControls& controls);
 
-  // The scenario as flown: at the controls' speed_scale.
+  // The scenario as flown: at the controls' speed_scale (a plant's flight: named after the plant,
+  // holding the origin).
   const Scenario& scenario() const { return scenario_; }
-  // Where the helicopter starts: the scenario's initial state, moved and turned by the controls'
+  // Where the plant starts: the scenario's initial state, moved and turned by the controls'
   // initial offsets.
   const Eigen::VectorXd& initial_state() const { return initial_state_; }
   const sim::SimulationSettings& settings() const { return settings_; }
-  // The controllers' model: nominal parameters, the scenario's model options, no wind (A-27).
-  const heli::Helicopter& model() const { return model_; }
+  // The controllers' model: for the helicopter its nominal parameters, the scenario's model
+  // options, no wind (A-27).
+  const SdcPlant& plant() const { return *plant_; }
+  // The same as the helicopter; throws thetad::Error naming the plant when the flight has another.
+  const heli::Helicopter& model() const;
   // What produced a run of this flight, less the controller (and the host and time, stamped per run).
   const Provenance& provenance() const { return provenance_; }
   // "ideal (...)" with neither disturbances nor actuator limits; else "all disturbances (the
   // paper's)", "no uncertainty, noise or wind" or the switches, then whether the limits are on.
   std::string disturbances() const;
+  // The disturbances of one run of this flight at its present settings.
+  std::unique_ptr<sim::Disturbances> make_disturbances() const;
 
   // Flies the next runs with `seed` (a campaign's draws reuse one Flight and its controllers).
   void set_seed(std::uint64_t seed) { settings_.seed = provenance_.seed = seed; }
@@ -65,11 +82,16 @@ class Flight {
   RunResult fly(PreparedController& prepared, Progress* progress = nullptr, const std::string& heading = {}) const;
 
  private:
+  Flight() = default;
+  // The columns of a run's log: what SimulationSettings::check_memory needs.
+  std::size_t log_width() const;
+
   Provenance provenance_;  // first: the scenario's loading fills in its SHA-256
   Scenario scenario_;
   sim::SimulationSettings settings_;
   Eigen::VectorXd initial_state_;
-  heli::Helicopter model_;
+  std::shared_ptr<const SdcPlant> plant_;
+  const heli::Helicopter* helicopter_ = nullptr;  // plant_ when it is the helicopter
 };
 
 }  // namespace thetad

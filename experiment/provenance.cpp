@@ -18,6 +18,7 @@ nlohmann::ordered_json to_json(const Provenance& p) {
   j["lapack_linked"] = p.build.lapack;
   j["blas_loaded"] = p.build.blas_loaded;
   j["lapack_loaded"] = p.build.lapack_loaded;
+  j["plant"] = p.plant;
   j["scenario"] = {{"name", p.scenario_name}, {"file", p.scenario_file}, {"sha256", p.scenario_sha256}};
   j["model"] = {{"preset", p.model_preset}, {"options", p.model_options}};
   j["seed"] = p.seed;
@@ -25,6 +26,7 @@ nlohmann::ordered_json to_json(const Provenance& p) {
   if (p.initial_offset) j["initial_offset_m"] = *p.initial_offset;
   if (p.initial_attitude_offset) j["initial_attitude_offset_rad"] = *p.initial_attitude_offset;
   if (p.speed_scale) j["trajectory_speed_scale"] = *p.speed_scale;
+  if (!p.initial_state.empty()) j["initial_state"] = p.initial_state;
   if (!p.host.empty()) j["host"] = p.host;
   if (!p.start_time.empty()) j["start_time_utc"] = p.start_time;
   return j;

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -16,6 +17,7 @@ namespace thetad {
 // (`thetad run --replay`).
 struct Provenance {
   BuildInfo build;
+  std::string plant;            // its name in the plant registry ("helicopter")
   std::string scenario_name;
   std::string scenario_file;    // as given (absolute when it was found by name)
   std::string scenario_sha256;  // of the file's bytes
@@ -28,6 +30,8 @@ struct Provenance {
   std::optional<std::array<double, 3>> initial_offset;           // m, north-east-down
   std::optional<std::array<double, 3>> initial_attitude_offset;  // rad: roll, pitch, yaw
   std::optional<double> speed_scale;
+  // Where a plant's flight starts (a scenario's file says it for the helicopter; empty there).
+  std::vector<double> initial_state;
   // Wall-clock facts: empty when the run was asked for byte-identical output (no timing).
   std::string host;
   std::string start_time;  // UTC, ISO 8601

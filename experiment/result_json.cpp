@@ -54,6 +54,18 @@ Json settings_json(const sim::SimulationSettings& s) {
 
 }  // namespace
 
+std::string tracking_error_key(const sim::RunSummary& summary) {
+  return summary.tracked.empty() || summary.tracked.front().command.unit.empty()
+             ? "tracking_error"
+             : "tracking_error_" + summary.tracked.front().command.unit;
+}
+
+std::vector<LogColumn> log_columns(const std::vector<LogColumn>& schema, bool timing) {
+  std::vector<LogColumn> columns = schema;
+  if (!timing && !columns.empty() && columns.back().header() == sim::step_time_column().header()) columns.pop_back();
+  return columns;
+}
+
 std::string status_text(const sim::RunSummary& summary) {
   if (summary.status == sim::RunStatus::completed) return "completed";
   char text[64];
@@ -62,7 +74,7 @@ std::string status_text(const sim::RunSummary& summary) {
 }
 
 Json summary_json(const sim::RunSummary& summary) {
-  const auto vector3 = [](const Eigen::Vector3d& v) { return Json::array({v.x(), v.y(), v.z()}); };
+  const auto entries = [](const Eigen::VectorXd& v) { return Json(std::vector<double>(v.data(), v.data() + v.size())); };
   Json j;
   j["controller_name"] = summary.controller;
   j["seed"] = summary.settings.seed;
@@ -78,19 +90,22 @@ Json summary_json(const sim::RunSummary& summary) {
   for (const auto& [name, count] : summary.controller_counters) counters[name] = count;
   j["controller_counters"] = counters;
   j["settings"] = settings_json(summary.settings);
-  j["tracking_error_m"] = {{"axes", {"x", "y", "z"}},
-                           {"rms", vector3(summary.rms_tracking_error)},
-                           {"max", vector3(summary.max_tracking_error)}};
+  Json axes = Json::array();
+  for (const auto& tracked : summary.tracked) axes.push_back(tracked.axis);
+  j[tracking_error_key(summary)] = {{"axes", axes},
+                                    {"rms", entries(summary.rms_tracking_error)},
+                                    {"max", entries(summary.max_tracking_error)}};
   Json effort;
   effort["definition"] = "RMS of the commanded input per channel over the controller samples";
-  // The commanded-input columns of the log, without their "cmd_" prefix, name the channels.
-  Eigen::Index channel = 0;
-  for (const auto& column : sim::log_schema()) {
-    if (column.name.rfind("cmd_", 0) == 0) effort["rms"][column.header().substr(4)] = summary.command_rms[channel++];
+  effort["rms"] = Json::object();
+  Json channels = Json::array();
+  for (std::size_t k = 0; k < summary.inputs.size(); ++k) {
+    effort["rms"][summary.inputs[k].header()] = summary.command_rms[static_cast<Eigen::Index>(k)];
+    channels.push_back(summary.inputs[k].name);
   }
   j["control_effort"] = effort;
   j["saturation"] = {{"definition", "controller samples whose applied input the actuator limits changed"},
-                     {"channels", {"T_mr", "delta_ped", "delta_col", "delta_lon", "delta_lat"}},
+                     {"channels", channels},
                      {"magnitude", summary.saturation.magnitude},
                      {"rate", summary.saturation.rate},
                      {"samples_limited", summary.saturation.samples_limited}};
@@ -118,7 +133,10 @@ Json result_json(const RunResult& result, const LogFile* log) {
   j["controller_settings"] = yaml_to_json(result.settings);
   j["settings_source"] = result.spec.settings_source;
   if (log) {
-    j["log"] = {{"csv", log->file}, {"sha256", log->sha256}, {"rows", log->rows}};
+    Json columns = Json::array();
+    for (const auto& column : log_columns(result.log.columns, result.summary.settings.measure_compute_time))
+      columns.push_back({{"name", column.name}, {"unit", column.unit}});
+    j["log"] = {{"csv", log->file}, {"sha256", log->sha256}, {"rows", log->rows}, {"columns", columns}};
   } else {
     j["log"] = nullptr;
   }

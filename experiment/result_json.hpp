@@ -1,6 +1,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 #include <yaml-cpp/yaml.h>
@@ -15,6 +16,13 @@ namespace thetad {
 // The summary (status, errors, effort, cost, timing unless it was not measured, the simulation
 // settings).
 nlohmann::ordered_json summary_json(const sim::RunSummary& summary);
+// Where the summary writes the tracking errors: "tracking_error_" and the unit of the tracked
+// states' commands ("tracking_error_m" for the helicopter), "tracking_error" without one.
+std::string tracking_error_key(const sim::RunSummary& summary);
+
+// The log's columns as written: the run's `schema` without the wall-clock column when the run
+// measured no time (so two runs with one seed give the same bytes).
+std::vector<LogColumn> log_columns(const std::vector<LogColumn>& schema, bool timing);
 
 // The whole result: {"format", "label", "controller" (registered name), the summary's fields,
 // "controller_settings", "settings_source", "log" (the CSV's file name, SHA-256, rows and columns;

@@ -13,6 +13,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "core/sim/helicopter_disturbances.hpp"
 #include "experiment/result_json.hpp"
 #include "experiment/sha256.hpp"
 #include "experiment/json_file.hpp"
@@ -24,7 +25,7 @@ namespace {
 namespace fs = std::filesystem;
 using Json = nlohmann::ordered_json;
 
-std::string header_line(const std::vector<sim::LogColumn>& columns) {
+std::string header_line(const std::vector<LogColumn>& columns) {
   std::string header;
   for (const auto& column : columns) {
     if (!header.empty()) header += ',';
@@ -35,15 +36,16 @@ std::string header_line(const std::vector<sim::LogColumn>& columns) {
 
 // Writes the log as CSV into `out` (the wall-clock column only with timing).
 LogFile write_csv(const sim::RunLog& log, bool timing, std::ostream& out) {
-  CsvStream csv(out, header_line(log_columns(timing)));
-  const std::size_t schema = sim::log_schema().size(), written = log_columns(timing).size();
+  const std::vector<LogColumn> columns = log_columns(log.columns, timing);
+  CsvStream csv(out, header_line(columns));
+  const std::size_t schema = log.columns.size(), written = columns.size();
   for (std::size_t i = 0; i < log.values.size(); i += schema) csv.row(log.values.data() + i, written);
   return csv.finish();
 }
 
 // The CSV's header must name `columns` in order; the error names the first difference, so that a
 // log of another thetad version is recognized as such.
-void check_header(const fs::path& csv, const std::vector<sim::LogColumn>& columns) {
+void check_header(const fs::path& csv, const std::vector<LogColumn>& columns) {
   std::ifstream in(csv, std::ios::binary);
   std::string line;
   std::getline(in, line);
@@ -80,12 +82,6 @@ class FolderLock {
 };
 
 }  // namespace
-
-std::vector<sim::LogColumn> log_columns(bool timing) {
-  std::vector<sim::LogColumn> columns = sim::log_schema();
-  if (!timing) columns.pop_back();  // the schema ends with the control step's wall time
-  return columns;
-}
 
 CsvStream::CsvStream(std::ostream& out, const std::string& header) : out_(out), chunk_(header + "\n") {}
 
@@ -185,7 +181,12 @@ StoredRun read_run_files(const fs::path& json_file) {
     throw Error(where + "its log " + run.csv_file.string() +
                 " has another SHA-256 than the result records: the two files come from different runs");
   const bool timing = run.result.at("settings").at("measure_compute_time").get<bool>();
-  run.columns = log_columns(timing);
+  if (log.contains("columns")) {
+    for (const auto& column : log.at("columns"))
+      run.columns.push_back({column.at("name").get<std::string>(), column.at("unit").get<std::string>()});
+  } else {
+    run.columns = log_columns(sim::helicopter_log_schema(), timing);
+  }
   check_header(run.csv_file, run.columns);
   return run;
 }

@@ -15,10 +15,6 @@
 
 namespace thetad {
 
-// The log's columns as written: sim::log_schema(), without the wall-clock column when the run
-// measured no time (so two runs with one seed give the same bytes).
-std::vector<sim::LogColumn> log_columns(bool timing);
-
 // Creates `folder` if needed and checks that a file can be written in it, so that a typo or a
 // read-only folder is found before a flight, not after. Throws thetad::Error naming the folder.
 void prepare_output_folder(const std::filesystem::path& folder);
@@ -64,11 +60,12 @@ struct StoredRun {
   std::filesystem::path json_file;
   std::filesystem::path csv_file;  // empty for a summary-only run
   nlohmann::ordered_json result;
-  std::vector<sim::LogColumn> columns;  // of the CSV
+  std::vector<LogColumn> columns;  // of the CSV
 };
 
 // Reads <label>.json and checks its format and, when it names a log, that the CSV exists, has that
-// SHA-256 and the header of log_columns(). Throws thetad::Error naming the file and the reason.
+// SHA-256 and the header the JSON records (the helicopter's log_columns() in results written before
+// the JSON recorded it). Throws thetad::Error naming the file and the reason.
 StoredRun read_run_files(const std::filesystem::path& json_file);
 
 // Every run in `folder`: through its comparison.json (its order; each result must be the file it

@@ -34,7 +34,7 @@ struct OptimalControlProblem {
   // The helicopter's simulate() prices the tracking vector's three integral entries (from this
   // index) with the left-rectangle integral of the position error x[0..2] − reference, not with
   // the plant's own integral states: set it to heli::kXi to price as simulate() does. Unset: the
-  // tracking vector of the state itself, as simulate_plant() prices it.
+  // tracking vector of the state itself, as sim::simulate() prices it.
   std::optional<int> sampled_position_integral;
   // That sampled integral at the start of the horizon (0 from the start of a flight).
   Eigen::Vector3d initial_integral = Eigen::Vector3d::Zero();

@@ -7,6 +7,7 @@
 
 #include "core/error.hpp"
 #include "core/helicopter/state.hpp"
+#include "core/sim/helicopter_disturbances.hpp"
 #include "core/sim/run_metrics.hpp"
 #include "optimal/shooting_interval.hpp"
 
@@ -18,7 +19,7 @@ using heli::kInputDim;
 using heli::kStateDim;
 
 Eigen::Index column(const std::string& header) {
-  const auto& schema = sim::log_schema();
+  const auto& schema = sim::helicopter_log_schema();
   const auto found = std::find_if(schema.begin(), schema.end(), [&](const auto& c) { return c.header() == header; });
   return static_cast<Eigen::Index>(found - schema.begin());
 }
@@ -127,8 +128,12 @@ RunResult optimum_run(const Flight& flight, const OptimalControlProblem& problem
     summary.reason = "Ipopt did not converge (" + solution.outcome.status + ")";
   }
   const double period = problem.controller_period();
-  sim::RunMetrics metrics(problem.state_weights, problem.input_weights, period, problem.samples(), false);
-  const auto columns = static_cast<Eigen::Index>(sim::log_schema().size());
+  summary.tracked = flight.model().tracked_states();
+  summary.inputs = flight.model().input_columns();
+  summary.saturation = sim::SaturationCounts::none(kInputDim);
+  sim::RunMetrics metrics(problem.state_weights, problem.input_weights, 3, period, problem.samples(), false);
+  run.log.columns = sim::helicopter_log_schema();
+  const auto columns = static_cast<Eigen::Index>(run.log.columns.size());
   run.log.values.assign(static_cast<std::size_t>(problem.samples() * columns), 0.0);
   const Eigen::Index measured = column("meas_x_p_m"), command = column("cmd_T_mr_N"), applied = column("app_T_mr_N"),
                      rotor = column("Omega_mr_rad_per_s");
@@ -138,7 +143,7 @@ RunResult optimum_run(const Flight& flight, const OptimalControlProblem& problem
     const Eigen::VectorXd u = solution.samples.row(k).segment(1 + kStateDim, kInputDim).transpose();
     const Eigen::VectorXd v = solution.samples.row(k).tail(kStateDim).transpose();
     const Eigen::Vector3d reference = problem.reference->position(t);
-    metrics.add(x.head<3>() - reference, v, u, 0);
+    metrics.add(Eigen::VectorXd(x.head<3>() - reference), v, u, 0);
     Eigen::Map<Eigen::RowVectorXd> row(run.log.values.data() + k * columns, columns);
     row(0) = t;
     row.segment<3>(1) = reference.transpose();

@@ -83,8 +83,9 @@ PreparedController prepare(const Flight& flight, Entry& entry) {
 // the run measured no time (the columns of the CSV).
 py::array log_array(py::object self) {
   const RunResult& result = self.cast<const RunResult&>();
-  const auto schema = static_cast<py::ssize_t>(sim::log_schema().size());
-  const auto columns = static_cast<py::ssize_t>(log_columns(result.summary.settings.measure_compute_time).size());
+  const auto schema = static_cast<py::ssize_t>(result.log.columns.size());
+  const auto columns =
+      static_cast<py::ssize_t>(log_columns(result.log.columns, result.summary.settings.measure_compute_time).size());
   const auto rows = static_cast<py::ssize_t>(result.log.rows());
   const auto item = static_cast<py::ssize_t>(sizeof(double));
   py::array view(py::dtype::of<double>(), {rows, columns}, {schema * item, item}, result.log.values.data(), self);
@@ -94,7 +95,8 @@ py::array log_array(py::object self) {
 
 std::vector<std::string> column_headers(const RunResult& result) {
   std::vector<std::string> headers;
-  for (const auto& column : log_columns(result.summary.settings.measure_compute_time)) headers.push_back(column.header());
+  for (const auto& column : log_columns(result.log.columns, result.summary.settings.measure_compute_time))
+    headers.push_back(column.header());
   return headers;
 }
 

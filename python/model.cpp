@@ -24,25 +24,20 @@ namespace {
 using heli::kInputDim;
 using heli::kStateDim;
 
-// The state and input names as the log's columns spell them (x_p, ..., s; T_mr, ..., delta_lat).
-std::vector<std::string> names_from_log(const std::string& first, int count, const std::string& prefix) {
-  const auto& schema = sim::log_schema();
-  for (std::size_t i = 0; i < schema.size(); ++i) {
-    if (schema[i].name != prefix + first) continue;
-    std::vector<std::string> names;
-    for (int k = 0; k < count; ++k) names.push_back(schema[i + static_cast<std::size_t>(k)].name.substr(prefix.size()));
-    return names;
-  }
-  throw Error("the log schema has no column " + prefix + first);
+// The helicopter's state and input names (x_p, ..., s; T_mr, ..., delta_lat), as its log spells them.
+std::vector<std::string> names_of(const std::vector<LogColumn>& columns) {
+  std::vector<std::string> names;
+  for (const auto& column : columns) names.push_back(column.name);
+  return names;
 }
 
 const std::vector<std::string>& state_names() {
-  static const std::vector<std::string> names = names_from_log("x_p", kStateDim, "");
+  static const std::vector<std::string> names = names_of(heli::Helicopter().state_columns());
   return names;
 }
 
 const std::vector<std::string>& input_names() {
-  static const std::vector<std::string> names = names_from_log("T_mr", kInputDim, "cmd_");
+  static const std::vector<std::string> names = names_of(heli::Helicopter().input_columns());
   return names;
 }
 

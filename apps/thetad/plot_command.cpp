@@ -9,6 +9,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <set>
+#include <string>
 
 #include <nlohmann/json.hpp>
 
@@ -58,7 +60,16 @@ std::string manifest(const std::vector<StoredRun>& runs, const PlotArguments& ar
   j["dpi"] = arguments.dpi;
   j["baseline"] = arguments.baseline;
   j["schema"] = ordered_json::array();
-  for (const auto& column : sim::log_schema()) j["schema"].push_back({{"name", column.name}, {"unit", column.unit}});
+  // Every column of the runs, by name, once, and the schema's last column, the control step's wall
+  // time, which runs flown without timing do not write.
+  std::set<std::string> named;
+  for (const auto& run : runs) {
+    for (const auto& column : run.columns) {
+      if (named.insert(column.name).second) j["schema"].push_back({{"name", column.name}, {"unit", column.unit}});
+    }
+  }
+  const LogColumn step_time = sim::step_time_column();
+  if (named.count(step_time.name) == 0) j["schema"].push_back({{"name", step_time.name}, {"unit", step_time.unit}});
   j["runs"] = ordered_json::array();
   for (const auto& run : runs) {
     ordered_json columns = ordered_json::array();

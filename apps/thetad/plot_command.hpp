@@ -22,8 +22,8 @@ CLI::App* add_plot_command(CLI::App& app, PlotArguments& arguments);
 // `in` (a `thetad compare` directory, or the <controller>.csv/.json pairs of `thetad run`), the
 // controllers overlaid, one file per figure and format in `out`.
 //
-// thetad checks everything it can before drawing: each CSV header against sim::log_schema() (the
-// only list of the columns; the script receives it as JSON and looks its columns up by name) and
+// thetad checks everything it can before drawing: each CSV header against the columns its result
+// file records (the script receives them as JSON and looks its columns up by name) and
 // each JSON file's syntax. The script (Debian's /usr/bin/python3, or $THETAD_PYTHON, with
 // MPLBACKEND=Agg) draws into a staging directory next to `out`; the files are moved into `out` only
 // when every figure is drawn, so a failure leaves `out` as it was.

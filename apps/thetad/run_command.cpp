@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <optional>
+#include <string>
 
 #include "controllers/registry.hpp"
 #include "core/error.hpp"
 #include "core/sim/seed.hpp"
 #include "experiment/controller_spec.hpp"
-#include "experiment/plant_flight.hpp"
+#include "experiment/flight.hpp"
 #include "experiment/plant_registry.hpp"
 #include "experiment/replay.hpp"
 #include "experiment/result_json.hpp"
@@ -23,13 +25,30 @@ void print_summary(const RunResult& result, const Flight& flight, const RunFiles
   std::printf("%s on %s (%g s, seed %llu, %s): %s%s%s.\n", result.spec.label.c_str(), flight.scenario().name.c_str(),
               s.settings.duration, static_cast<unsigned long long>(s.settings.seed), flight.disturbances().c_str(),
               status_text(s).c_str(), s.reason.empty() ? "" : ": ", s.reason.c_str());
-  std::printf("Position error over %lld controller samples: RMS x %.4f, y %.4f, z %.4f m; max x %.4f, y %.4f, "
-              "z %.4f m.\n",
-              static_cast<long long>(s.controller_samples), s.rms_tracking_error.x(), s.rms_tracking_error.y(),
-              s.rms_tracking_error.z(), s.max_tracking_error.x(), s.max_tracking_error.y(), s.max_tracking_error.z());
-  std::printf("RMS command: T_mr %.3f N, delta_ped %.4f, delta_col %.4f, delta_lon %.4f, delta_lat %.4f rad; "
-              "cost J = %.6g.\n",
-              s.command_rms[0], s.command_rms[1], s.command_rms[2], s.command_rms[3], s.command_rms[4], s.cost);
+  if (!s.tracked.empty()) {
+    std::string rms, max;
+    for (std::size_t i = 0; i < s.tracked.size(); ++i) {
+      const auto k = static_cast<Eigen::Index>(i);
+      char entry[96];
+      std::snprintf(entry, sizeof entry, "%s%s %.4f %s", i ? ", " : "", s.tracked[i].axis.c_str(),
+                    s.rms_tracking_error[k], s.tracked[i].command.unit.c_str());
+      rms += entry;
+      std::snprintf(entry, sizeof entry, "%s%s %.4f %s", i ? ", " : "", s.tracked[i].axis.c_str(),
+                    s.max_tracking_error[k], s.tracked[i].command.unit.c_str());
+      max += entry;
+    }
+    std::printf("Tracking error over %lld controller samples: RMS %s; max %s.\n",
+                static_cast<long long>(s.controller_samples), rms.c_str(), max.c_str());
+  }
+  std::string effort;
+  for (std::size_t k = 0; k < s.inputs.size(); ++k) {
+    char entry[96];
+    std::snprintf(entry, sizeof entry, "%s%s %.4g %s", k ? ", " : "", s.inputs[k].name.c_str(),
+                  s.command_rms[static_cast<Eigen::Index>(k)], s.inputs[k].unit.c_str());
+    effort += entry;
+  }
+  std::printf("RMS command: %s; cost J = %.6g over %lld controller samples.\n", effort.c_str(), s.cost,
+              static_cast<long long>(s.controller_samples));
   if (s.settings.measure_compute_time)
     std::printf("In-flight compute time per step (includes the simulation's noise; thetad bench measures the "
                 "per-step cost): median %.1f us, p99 %.1f us.\n",
@@ -67,31 +86,22 @@ int run_replay(const RunArguments& arguments) {
   return replayed.result.completed() ? kExitCompleted : kExitDiverged;
 }
 
-// thetad run --plant: the controller on a registered plant of the user's, from its initial state
+// thetad run --plant: the controller on a registered plant (a plug-in's), from its initial state
 // (or --initial-state), regulating to the origin.
 int run_plant(const RunArguments& arguments) {
   if (!arguments.flight.scenario.empty()) throw Error("thetad run: --plant and --scenario exclude each other");
-  const RunControls controls = run_controls(arguments.flight);
-  if (!controls.duration) throw Error("thetad run --plant needs --duration (a plant has no scenario to say it)");
-  NamedPlant plant = PlantRegistry::instance().make(arguments.plant, YAML::Node());
+  std::optional<Eigen::VectorXd> initial_state;
   if (!arguments.initial_state.empty())
-    plant.initial_state = Eigen::Map<const Eigen::VectorXd>(arguments.initial_state.data(),
-                                                            static_cast<Eigen::Index>(arguments.initial_state.size()));
-  if (plant.initial_state.size() != plant.plant->state_dim())
-    throw Error("--initial-state: the plant '" + arguments.plant + "' has " + std::to_string(plant.plant->state_dim()) +
-                " states, got " + std::to_string(plant.initial_state.size()));
-  const ControllerSpec spec = parse_controller_specs({arguments.controller}, arguments.flight.settings).front();
+    initial_state = Eigen::Map<const Eigen::VectorXd>(arguments.initial_state.data(),
+                                                      static_cast<Eigen::Index>(arguments.initial_state.size()));
+  const Flight flight = Flight::of_plant(arguments.plant, initial_state, run_controls(arguments.flight));
+  PreparedController prepared = flight.prepare(parse_controller_specs({arguments.controller}, arguments.flight.settings).front());
   prepare_output_folder(arguments.flight.out);
-  const FixedPosition origin(Eigen::Vector3d::Zero());
-  const PlantFlightResult result = fly_plant(*plant.plant, spec, plant.initial_state, origin, controls);
-  const RunFiles files = write_plant_run_files(result, arguments.plant, arguments.flight.out);
-  const sim::PlantRun& run = result.run;
-  std::printf("%s on plant %s (%g s): %s%s%s; cost J = %.6g over %lld controller samples.\n", spec.label.c_str(),
-              arguments.plant.c_str(), result.simulation.duration,
-              sim::status_name(run.status), run.reason.empty() ? "" : ": ",
-              run.reason.c_str(), run.cost, static_cast<long long>(run.controller_samples));
-  std::printf("Wrote %s.\n", files.json.c_str());
-  return run.status == sim::RunStatus::completed ? kExitCompleted : kExitDiverged;
+  Progress progress(Progress::mode_for_stderr(arguments.flight.quiet));
+  const RunResult result = flight.fly(prepared, &progress);
+  const RunFiles files = write_run_files(result, arguments.flight.out);
+  print_summary(result, flight, files);
+  return result.completed() ? kExitCompleted : kExitDiverged;
 }
 
 }  // namespace

@@ -52,6 +52,15 @@ class Helicopter final : public SdcPlant {
   // V_track of Eq. (36) (spec §7.3).
   void tracking_vector(const Eigen::Ref<const Eigen::VectorXd>& measured, const Reference& reference,
                        Eigen::Ref<Eigen::VectorXd> v) const override;
+  // V_track on the true state: its integral entries are the integral of the true position error,
+  // by the rule the controller's measured integral follows, not the true state's own x_i.
+  void true_tracking_vector(const Eigen::Ref<const Eigen::VectorXd>& x, const Reference& reference,
+                            const Eigen::Vector3d& error_integral, Eigen::Ref<Eigen::VectorXd> v) const override;
+  // x_p, y_p, z_p, commanded by x_c, y_c, z_c (m).
+  std::vector<TrackedState> tracked_states() const override;
+  // The 18 states and 5 inputs by their names in docs/model.md §1 (x_p ... s; T_mr ... delta_lat).
+  std::vector<LogColumn> state_columns() const override;
+  std::vector<LogColumn> input_columns() const override;
 
   // The paper's weights (Eqs. 33-34, paper_weights.hpp) and u0 = [m g, 0, 0, 0, 0], the rotor at
   // hover thrust (spec §7.1, §7.6).

@@ -13,4 +13,16 @@ void Helicopter::tracking_vector(const Eigen::Ref<const Eigen::VectorXd>& measur
   v(kS) = 1.0;
 }
 
+void Helicopter::true_tracking_vector(const Eigen::Ref<const Eigen::VectorXd>& x, const Reference& reference,
+                                      const Eigen::Vector3d& error_integral, Eigen::Ref<Eigen::VectorXd> v) const {
+  v.segment<3>(kXp) = x.segment<3>(kXp) - reference.position;
+  v.segment<11>(kU) = x.segment<11>(kU);
+  v.segment<3>(kXi) = error_integral;
+  v(kS) = 1.0;
+}
+
+std::vector<TrackedState> Helicopter::tracked_states() const {
+  return {{kXp, "x", {"x_c", "m"}}, {kYp, "y", {"y_c", "m"}}, {kZp, "z", {"z_c", "m"}}};
+}
+
 }  // namespace thetad::heli

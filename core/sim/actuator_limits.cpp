@@ -65,7 +65,7 @@ ActuatorLimiter::ActuatorLimiter(const ActuatorLimits& limits, double period)
 void ActuatorLimiter::reset() {
   first_ = true;
   last_flags_ = 0;
-  counts_ = {};
+  counts_ = SaturationCounts::none(heli::kInputDim);
 }
 
 void ActuatorLimiter::apply(Eigen::Ref<Eigen::VectorXd> input) {

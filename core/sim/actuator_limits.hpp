@@ -1,12 +1,11 @@
 #pragma once
 
-#include <array>
-#include <cstdint>
 
 #include <Eigen/Core>
 
 #include "core/helicopter/parameters.hpp"
 #include "core/helicopter/state.hpp"
+#include "core/sim/saturation_counts.hpp"
 
 namespace thetad::sim {
 
@@ -39,13 +38,6 @@ struct ActuatorLimits {
   static constexpr double kFullRangeTime = 0.15;  // s
 };
 
-// How often the limits changed the input of a run, per channel, in controller samples.
-struct SaturationCounts {
-  std::array<std::int64_t, heli::kInputDim> magnitude{};  // held at lower or upper
-  std::array<std::int64_t, heli::kInputDim> rate{};       // slowed by the rate limit
-  std::int64_t samples_limited = 0;                       // samples where any channel was changed
-};
-
 // Applies ActuatorLimits sample by sample. The first sample after reset() is limited in magnitude
 // only (the servos start where it puts them); each later one also moves at most rate · period from
 // the previous applied input. Allocates nothing.
@@ -66,7 +58,7 @@ class ActuatorLimiter {
   InputVector previous_ = InputVector::Zero();
   bool first_ = true;
   unsigned last_flags_ = 0;
-  SaturationCounts counts_;
+  SaturationCounts counts_ = SaturationCounts::none(heli::kInputDim);
 };
 
 }  // namespace thetad::sim

@@ -6,19 +6,21 @@
 
 namespace thetad::sim {
 
-RunMetrics::RunMetrics(Eigen::VectorXd state_weights, Eigen::VectorXd input_weights, double period,
-                       std::int64_t samples, bool timing)
+RunMetrics::RunMetrics(Eigen::VectorXd state_weights, Eigen::VectorXd input_weights, Eigen::Index tracked,
+                       double period, std::int64_t samples, bool timing)
     : state_weights_(std::move(state_weights)),
       input_weights_(std::move(input_weights)),
       period_(period),
       timing_(timing),
+      error_square_sum_(Eigen::VectorXd::Zero(tracked)),
+      max_error_(Eigen::VectorXd::Zero(tracked)),
       command_square_sum_(Eigen::VectorXd::Zero(input_weights_.size())) {
   if (timing_) compute_ns_.reserve(static_cast<std::size_t>(samples));
 }
 
-void RunMetrics::add(const Eigen::Vector3d& error, const Eigen::VectorXd& v_track, const Eigen::VectorXd& command,
+void RunMetrics::add(const Eigen::VectorXd& error, const Eigen::VectorXd& v_track, const Eigen::VectorXd& command,
                      std::int64_t compute_ns) {
-  // J of Eq. (14) by left rectangles at the controller rate.
+  // J (the helicopter's Eq. 32, docs/model.md §7) by left rectangles at the controller rate.
   cost_ += 0.5 * (v_track.cwiseAbs2().dot(state_weights_) + command.cwiseAbs2().dot(input_weights_)) * period_;
   error_square_sum_ += error.cwiseAbs2();
   max_error_ = max_error_.cwiseMax(error.cwiseAbs());
@@ -31,6 +33,8 @@ void RunMetrics::finish(RunSummary& summary) {
   summary.controller_samples = samples_;
   summary.cost = cost_;
   summary.max_tracking_error = max_error_;
+  summary.rms_tracking_error = Eigen::VectorXd::Zero(error_square_sum_.size());
+  summary.command_rms = Eigen::VectorXd::Zero(command_square_sum_.size());
   if (samples_ > 0) {
     const auto n = static_cast<double>(samples_);
     summary.rms_tracking_error = (error_square_sum_ / n).cwiseSqrt();

@@ -7,7 +7,7 @@
 
 #include <Eigen/Core>
 
-#include "core/sim/simulator.hpp"
+#include "core/sim/run_summary.hpp"
 
 namespace thetad::sim {
 
@@ -16,14 +16,15 @@ namespace thetad::sim {
 // construction: add() allocates nothing.
 class RunMetrics {
  public:
-  // `state_weights`, `input_weights`: the diagonals of Q and R in J; `period`: the controller
-  // period T_c; `samples`: the run's controller samples (for the timing record, when `timing`).
-  RunMetrics(Eigen::VectorXd state_weights, Eigen::VectorXd input_weights, double period, std::int64_t samples,
-             bool timing);
+  // `state_weights`, `input_weights`: the diagonals of Q and R in J; `tracked`: how many tracked
+  // states the errors have; `period`: the controller period T_c; `samples`: the run's controller
+  // samples (for the timing record, when `timing`).
+  RunMetrics(Eigen::VectorXd state_weights, Eigen::VectorXd input_weights, Eigen::Index tracked, double period,
+             std::int64_t samples, bool timing);
 
-  // One controller sample: the true position error, V_track on the true state, the commanded u
-  // and the control() wall time.
-  void add(const Eigen::Vector3d& error, const Eigen::VectorXd& v_track, const Eigen::VectorXd& command,
+  // One controller sample: the tracked states' true errors, the tracking vector on the true state,
+  // the commanded u and the control() wall time.
+  void add(const Eigen::VectorXd& error, const Eigen::VectorXd& v_track, const Eigen::VectorXd& command,
            std::int64_t compute_ns);
 
   // Writes the figures into `summary` (controller_samples, errors, effort, cost, timing).
@@ -35,8 +36,8 @@ class RunMetrics {
   bool timing_;
   std::int64_t samples_ = 0;
   double cost_ = 0.0;
-  Eigen::Vector3d error_square_sum_ = Eigen::Vector3d::Zero();
-  Eigen::Vector3d max_error_ = Eigen::Vector3d::Zero();
+  Eigen::VectorXd error_square_sum_;
+  Eigen::VectorXd max_error_;
   Eigen::VectorXd command_square_sum_;
   std::vector<std::int64_t> compute_ns_;
 };

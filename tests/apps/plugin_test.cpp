@@ -81,16 +81,17 @@ TEST_F(Plugins, APluginPlantFliesThetaDAndSdreFromTheCommandLine) {
     const Output output = thetad(plugin + " run --plant companion --controller " + controller +
                                  " --duration 10 --initial-state 0.8,0.2 --out " + path("plant"));
     ASSERT_EQ(output.status, 0) << output.err;
-    EXPECT_THAT(output.out, HasSubstr(std::string(controller) + " on plant companion (10 s): completed"));
+    EXPECT_THAT(output.out, HasSubstr(std::string(controller) + " on companion (10 s, seed 1, ideal"));
+    EXPECT_THAT(output.out, HasSubstr("completed"));
     const auto result =
         nlohmann::json::parse(thetad::testing::read_text(dir_ / "plant" / (std::string(controller) + ".json")));
-    EXPECT_EQ(result["format"], "thetad-plant-run-1");
-    EXPECT_EQ(result["plant"], "companion");
-    EXPECT_EQ(result["initial_state"], nlohmann::json::array({0.8, 0.2}));
+    EXPECT_EQ(result["format"], "thetad-run-1");  // the result of every plant's flight
+    EXPECT_EQ(result["provenance"]["plant"], "companion");
+    EXPECT_EQ(result["provenance"]["initial_state"], nlohmann::json::array({0.8, 0.2}));
     EXPECT_EQ(result["controller_samples"], 10000);
     // At rest at the end: the last logged state.
     const std::string csv = thetad::testing::read_text(dir_ / "plant" / (std::string(controller) + ".csv"));
-    EXPECT_EQ(csv.substr(0, csv.find('\n')), "t_s,x_0,x_1,u_0");
+    EXPECT_EQ(csv.substr(0, csv.find('\n')), "t_s,x_0,x_1,meas_x_0,meas_x_1,cmd_u_0,app_u_0,compute_ns");
     const std::string last = csv.substr(csv.rfind('\n', csv.size() - 2) + 1);
     EXPECT_LT(std::abs(std::stod(last.substr(last.find(',') + 1))), 1e-3) << last;
   }

@@ -14,7 +14,7 @@
 #include <Eigen/Core>
 
 #include "core/error.hpp"
-#include "core/sim/simulator.hpp"
+#include "core/sim/helicopter_disturbances.hpp"
 #include "core/trim.hpp"
 
 namespace thetad::testing {
@@ -35,7 +35,7 @@ struct HoverRecovery {
 };
 
 inline std::size_t log_column(const std::string& name) {
-  const auto& schema = sim::log_schema();
+  const auto& schema = sim::helicopter_log_schema();
   for (std::size_t i = 0; i < schema.size(); ++i) {
     if (schema[i].name == name) return i;
   }

@@ -15,7 +15,7 @@
 #include "core/error.hpp"
 #include "core/helicopter/helicopter.hpp"
 #include "core/sim/recording_law.hpp"
-#include "core/sim/simulator.hpp"
+#include "core/sim/helicopter_disturbances.hpp"
 #include "scenarios/scenario.hpp"
 
 namespace thetad::testing {

@@ -10,7 +10,7 @@
 #include "controllers/lqr_schedule_design.hpp"
 #include "core/error.hpp"
 #include "core/helicopter/helicopter.hpp"
-#include "core/sim/simulator.hpp"
+#include "core/sim/helicopter_disturbances.hpp"
 #include "tests/error_message.hpp"
 
 namespace thetad::sim {
@@ -55,8 +55,8 @@ RunResult fly_bang_bang(bool limits_on, bool actuator_noise) {
 }
 
 TEST(ActuatorLimitsTest, LogColumnsAreWhereTheTestLooks) {
-  EXPECT_EQ(log_schema()[kAppliedColumn].header(), "app_T_mr_N");
-  EXPECT_EQ(log_schema()[kFlagColumn].header(), "sat_T_mr_flag");
+  EXPECT_EQ(helicopter_log_schema()[kAppliedColumn].header(), "app_T_mr_N");
+  EXPECT_EQ(helicopter_log_schema()[kFlagColumn].header(), "sat_T_mr_flag");
 }
 
 TEST(ActuatorLimitsTest, SaturatedInputNeverExceedsItsBound) {

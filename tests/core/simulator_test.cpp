@@ -1,4 +1,4 @@
-#include "core/sim/simulator.hpp"
+#include "core/sim/helicopter_disturbances.hpp"
 
 #include <algorithm>
 #include <array>
@@ -51,7 +51,7 @@ const FixedPosition kHoverPoint(Eigen::Vector3d(0.0, 0.0, -3.5));
 // The log's CSV header: the schema's columns, as the experiment library writes them.
 std::string csv_header() {
   std::string header;
-  for (const auto& column : log_schema()) {
+  for (const auto& column : helicopter_log_schema()) {
     if (!header.empty()) header += ',';
     header += column.header();
   }
@@ -85,14 +85,14 @@ std::vector<std::vector<double>> read_csv_rows(const fs::path& path) {
     std::stringstream fields(line);
     std::string field;
     while (std::getline(fields, field, ',')) row.push_back(std::stod(field));
-    EXPECT_EQ(row.size(), log_schema().size());
+    EXPECT_EQ(row.size(), helicopter_log_schema().size());
     rows.push_back(std::move(row));
   }
   return rows;
 }
 
 std::size_t column(const std::string& header) {
-  const auto& schema = log_schema();
+  const auto& schema = helicopter_log_schema();
   for (std::size_t i = 0; i < schema.size(); ++i)
     if (schema[i].header() == header) return i;
   ADD_FAILURE() << "no column " << header;
@@ -121,7 +121,7 @@ SimulationSettings short_paper_run(std::uint64_t seed) {
 }
 
 TEST(LogSchema, NamesEveryColumnWithItsUnit) {
-  const auto& schema = log_schema();
+  const auto& schema = helicopter_log_schema();
   EXPECT_EQ(schema.size(), 1u + 3 + kStateDim + kStateDim + kInputDim + kInputDim + kInputDim + 1 + 3 + 1);
   EXPECT_EQ(schema.front().header(), "t_s");
   EXPECT_EQ(schema.back().header(), "compute_ns");
@@ -339,7 +339,7 @@ TEST_F(SimulatorFiles, SummaryFieldsArePresentAndAgreeWithTheCsv) {
   Eigen::Matrix<double, kInputDim, 1> command_square_sum = Eigen::Matrix<double, kInputDim, 1>::Zero();
   for (const auto& row : rows) {
     for (int i = 0; i < 3; ++i) {
-      const double error = row[column(log_schema()[4 + i].header())] - row[1 + i];
+      const double error = row[column(helicopter_log_schema()[4 + i].header())] - row[1 + i];
       square_sum[i] += error * error;
       max_error[i] = std::max(max_error[i], std::abs(error));
     }
@@ -361,7 +361,7 @@ TEST_F(SimulatorFiles, SummaryFieldsArePresentAndAgreeWithTheCsv) {
   double cost = 0.0;
   for (const auto& row : rows) {
     Eigen::VectorXd v(kStateDim);
-    for (int i = 0; i < kStateDim; ++i) v[i] = row[column(log_schema()[4 + i].header())];
+    for (int i = 0; i < kStateDim; ++i) v[i] = row[column(helicopter_log_schema()[4 + i].header())];
     const Eigen::Vector3d error = v.segment<3>(kXp) - Eigen::Vector3d(row[1], row[2], row[3]);
     v.segment<3>(kXp) = error;
     v.segment<3>(kXi) = error_integral;

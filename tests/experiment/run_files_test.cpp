@@ -62,7 +62,7 @@ TEST_F(RunFilesTest, TheResultNamesItsLogWithItsDigestAndReadsBack) {
   EXPECT_EQ(run.result["log"]["sha256"], sha256_of_file(files.csv));
   EXPECT_EQ(run.result["log"]["rows"], 50);
   EXPECT_EQ(run.result["controller"], "lqr");
-  EXPECT_EQ(run.columns.size(), sim::log_schema().size());
+  EXPECT_EQ(run.columns.size(), sim::helicopter_log_schema().size());
 }
 
 TEST_F(RunFilesTest, ALogFromAnotherRunIsRefused) {

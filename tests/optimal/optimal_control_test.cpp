@@ -8,7 +8,7 @@
 
 #include <random>
 
-#include "core/sim/plant_simulator.hpp"
+#include "core/sim/simulator.hpp"
 #include "optimal/shooting_interval.hpp"
 #include "tests/optimal/interval_differences.hpp"
 #include "tests/error_message.hpp"
@@ -159,15 +159,19 @@ TEST(OptimalControl, PricesAFlightAsTheSimulatorDoes) {
   settings.dt = problem.dt;
   settings.controller_period_steps = problem.controller_period_steps;
   settings.duration = problem.horizon();
-  const sim::PlantRun run = sim::simulate_plant(law, plant, kOrigin, problem.initial_state, settings);
-  ASSERT_EQ(run.status, sim::RunStatus::completed);
-  const ShootingTrajectory nodes = shooting_guess(problem, run.log.middleCols(1, 3), run.log.rightCols(2));
+  sim::NoDisturbances as_it_is(plant);
+  const sim::RunResult run = sim::simulate(law, as_it_is, kOrigin, problem.initial_state, settings);
+  ASSERT_EQ(run.summary.status, sim::RunStatus::completed);
+  // Rows t, x (3), measured x (3), command (2), applied (2), compute time.
+  const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> log(
+      run.log.values.data(), run.log.rows(), static_cast<Eigen::Index>(run.log.columns.size()));
+  const ShootingTrajectory nodes = shooting_guess(problem, log.middleCols(1, 3), log.middleCols(7, 2));
   ShootingInterval interval(problem);
   Eigen::VectorXd next(3);
   double cost = 0.0;
   for (int k = 0; k < problem.intervals; ++k)
     cost += interval.propagate(k, nodes.nodes.row(k).transpose(), nodes.inputs.row(k).transpose(), next);
-  EXPECT_NEAR(cost, run.cost, 1e-12 * run.cost);
+  EXPECT_NEAR(cost, run.summary.cost, 1e-12 * run.summary.cost);
 }
 
 TEST(OptimalControl, BadProblemsAndStartsAreRefusedClearly) {
