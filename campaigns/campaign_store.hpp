@@ -51,6 +51,8 @@ class CampaignStore {
 
  private:
   void execute(const std::string& sql) const;
+  // WAL journal, every commit flushed to disk (synchronous=FULL).
+  void make_durable();
   void create_tables();
   void create_schema(const Campaign& campaign, const Shard& shard, const std::string& provenance);
 

@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "core/error.hpp"
+#include "core/text_file.hpp"
 
 namespace thetad {
 
@@ -59,7 +60,7 @@ const ControllerRegistry::Entry& ControllerRegistry::entry(const std::string& na
   for (const Entry& e : entries_) {
     if (e.name == name) return e;
   }
-  throw Error("unknown controller '" + name + "' (known: " + known_names() + ")");
+  throw Error("unknown controller '" + escaped_utf8(name) + "' (known: " + known_names() + ")");
 }
 
 std::unique_ptr<Controller> ControllerRegistry::make(const std::string& name, const YAML::Node& settings,
@@ -70,6 +71,7 @@ std::unique_ptr<Controller> ControllerRegistry::make(const std::string& name, co
 BuiltController ControllerRegistry::build(const std::string& name, const YAML::Node& settings,
                                           const ControllerContext& context) const {
   const Entry& found = entry(name);
+  check_block(settings, name);
   const Settings fields(settings);
   std::unique_ptr<Controller> controller = found.factory(fields, context);
   if (!controller) throw Error("controller '" + name + "' (" + found.origin + "): its factory returned no controller");
@@ -80,7 +82,9 @@ void ControllerRegistry::check(const std::string& name, const YAML::Node& settin
                                const ControllerContext& context) const {
   ControllerContext checking = context;
   checking.settings_only = true;
-  entry(name).factory(Settings(settings), checking);
+  const Entry& found = entry(name);
+  check_block(settings, name);
+  found.factory(Settings(settings), checking);
 }
 
 bool ControllerRegistry::contains(const std::string& name) const {

@@ -1,5 +1,6 @@
 #include "core/atomic_file.hpp"
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <array>
@@ -83,7 +84,28 @@ int claim_slot(const std::filesystem::path& path) {
   return -1;
 }
 
+// fsync(2) on `path` opened read-only (Linux flushes a file whatever the mode of the descriptor):
+// 0, or the errno of the open or the fsync.
+int sync_path(const std::filesystem::path& path, int flags) {
+  const int fd = open(path.c_str(), O_RDONLY | O_CLOEXEC | flags);
+  if (fd < 0) return errno;
+  const int reason = fsync(fd) == 0 ? 0 : errno;
+  close(fd);
+  return reason;
+}
+
+void sync_directory(const std::filesystem::path& folder) {
+  if (const int reason = sync_path(folder, O_DIRECTORY); reason != 0)
+    throw Error("cannot flush the folder " + folder.string() + " to disk: " + std::strerror(reason));
+}
+
 }  // namespace
+
+void sync_entry(const std::filesystem::path& file) {
+  const std::filesystem::path folder = std::filesystem::absolute(file).parent_path();
+  sync_directory(folder);
+  sync_directory(folder.parent_path());
+}
 
 PartialFile::PartialFile(const std::filesystem::path& final_path) : final_(final_path) {
   install_handlers();
@@ -119,6 +141,9 @@ void PartialFile::write(const std::function<void(std::ostream&)>& write) {
   if (!out)
     throw Error("cannot write " + final_.string() + ": " + (reason != 0 ? std::strerror(reason) : "write error") +
                 " (nothing was written under that name)");
+  // Before the rename: else a power loss may leave the final name on an empty or torn file.
+  if (const int flush = sync_path(partial_, 0); flush != 0)
+    throw Error("cannot write " + final_.string() + ": " + std::strerror(flush) + " (nothing was written under that name)");
 }
 
 void PartialFile::commit() {
@@ -126,6 +151,7 @@ void PartialFile::commit() {
   std::filesystem::rename(partial_, final_, error);
   if (error) throw Error("cannot rename " + partial_.string() + " to " + final_.string() + ": " + error.message());
   committed_ = true;
+  sync_entry(final_);
 }
 
 void write_file_atomically(const std::filesystem::path& path, const std::string& content) {

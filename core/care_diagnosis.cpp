@@ -1,6 +1,5 @@
 #include "core/care_diagnosis.hpp"
 
-#include <algorithm>
 #include <complex>
 #include <limits>
 
@@ -13,11 +12,28 @@ namespace thetad {
 
 using care::num;
 
+namespace {
+
+// `M` multiplied by a positive number so that ‖M‖_F = `scale` (zero stays zero), divided first so
+// that no ratio of norms overflows (‖M‖_F = 1e-300 against ‖A‖_F = 1e10).
+Eigen::MatrixXd scaled_to(const Eigen::Ref<const Eigen::MatrixXd>& M, double scale) {
+  const double norm = care::frobenius_norm(M);
+  return norm > 0.0 ? Eigen::MatrixXd(M / norm * scale) : Eigen::MatrixXd(M);
+}
+
+}  // namespace
+
 std::string broken_care_precondition(const Eigen::Ref<const Eigen::MatrixXd>& A,
-                                     const Eigen::Ref<const Eigen::MatrixXd>& B,
-                                     const Eigen::Ref<const Eigen::MatrixXd>& Q) {
+                                     const Eigen::Ref<const Eigen::MatrixXd>& B_given,
+                                     const Eigen::Ref<const Eigen::MatrixXd>& Q_given) {
   const Eigen::Index n = A.rows();
-  const double scale = std::max({1.0, A.norm(), B.norm(), Q.norm()});
+  // Stabilizability of (A, B) and detectability of (Q, A) do not change when B or Q is multiplied
+  // by a positive number, but σ_min[A − λI, B] and σ_min[A − λI; Q] do: with B and Q scaled to
+  // ‖A‖_F the tolerance, relative to ‖A‖_F (the size of the rounding in A's eigenvalues), means the
+  // same for weights of any size. Against max(1, ‖A‖, ‖B‖, ‖Q‖) instead, Q scaled by 1e-170 read
+  // as blind to every mode on the axis, and Q scaled by 1e200 put every mode of A on the axis.
+  const double scale = care::frobenius_norm(A) > 0.0 ? care::frobenius_norm(A) : 1.0;
+  const Eigen::MatrixXd B = scaled_to(B_given, scale), Q = scaled_to(Q_given, scale);
   const double tolerance = 100.0 * static_cast<double>(n) * std::numeric_limits<double>::epsilon() * scale;
   const Eigen::VectorXcd modes = Eigen::EigenSolver<Eigen::MatrixXd>(A, false).eigenvalues();
   const auto smallest_singular_value = [](const Eigen::MatrixXcd& M) {
@@ -32,7 +48,7 @@ std::string broken_care_precondition(const Eigen::Ref<const Eigen::MatrixXd>& A,
       const double sigma = smallest_singular_value(reach);
       if (sigma <= tolerance)
         return "the pair (A, B) is not stabilizable: the mode " + mode + " of A is not controllable (σ_min[A − λI, B] = " +
-               num(sigma) + ")";
+               num(sigma) + ", B scaled to ‖A‖_F)";
     }
     if (std::abs(lambda.real()) <= tolerance) {
       Eigen::MatrixXcd see(2 * n, n);
@@ -40,7 +56,7 @@ std::string broken_care_precondition(const Eigen::Ref<const Eigen::MatrixXd>& A,
       const double sigma = smallest_singular_value(see);
       if (sigma <= tolerance)
         return "(Q, A) is not detectable: the mode " + mode + " of A on the imaginary axis is not seen by Q "
-               "(σ_min[A − λI; Q] = " + num(sigma) + ")";
+               "(σ_min[A − λI; Q] = " + num(sigma) + ", Q scaled to ‖A‖_F)";
     }
   }
   return {};

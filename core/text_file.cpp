@@ -57,21 +57,23 @@ std::size_t utf8_sequence(const std::string& text, std::size_t i) {
 }  // namespace
 
 std::string read_text_file(const fs::path& file) {
+  // A path from the command line may hold any bytes; the message must still be UTF-8.
+  const std::string cannot_read = "cannot read " + escaped_utf8(file.string()) + ": ";
   std::error_code error;
   const fs::file_status status = fs::status(file, error);
-  if (error) throw Error("cannot read " + file.string() + ": " + error.message());
+  if (error) throw Error(cannot_read + error.message());
   if (status.type() != fs::file_type::regular)
-    throw Error("cannot read " + file.string() + ": " + kind_of(status.type()) + ", not a regular file");
+    throw Error(cannot_read + kind_of(status.type()) + ", not a regular file");
   const std::uintmax_t size = fs::file_size(file, error);
-  if (error) throw Error("cannot read " + file.string() + ": " + error.message());
+  if (error) throw Error(cannot_read + error.message());
   if (size > kMaxInputFileBytes)
-    throw Error("cannot read " + file.string() + ": " + std::to_string(size) + " bytes, more than the " +
+    throw Error(cannot_read + std::to_string(size) + " bytes, more than the " +
                 std::to_string(kMaxInputFileBytes >> 20) + " MiB an input file may have");
   std::ifstream in(file, std::ios::binary);
-  if (!in) throw Error("cannot read " + file.string() + ": " + std::strerror(errno));
+  if (!in) throw Error(cannot_read + std::strerror(errno));
   std::ostringstream text;
   text << in.rdbuf();
-  if (in.bad()) throw Error("cannot read " + file.string() + ": read error");
+  if (in.bad()) throw Error(cannot_read + "read error");
   return text.str();
 }
 

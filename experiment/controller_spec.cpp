@@ -5,6 +5,7 @@
 
 #include "controllers/registry.hpp"
 #include "core/error.hpp"
+#include "core/text_file.hpp"
 #include "settings/settings.hpp"
 #include "settings/yaml_document.hpp"
 
@@ -34,6 +35,7 @@ YAML::Node load_settings_file(const std::filesystem::path& file) {
     if (!ControllerRegistry::instance().contains(name))
       throw SettingsError(name, "unknown controller (known: " + ControllerRegistry::instance().known_names() + ")", item.first.Mark(),
                           file.string());
+    check_block(item.second, name, file.string());
   }
   return root;
 }
@@ -43,11 +45,12 @@ void check_label(const std::string& label) {
     return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '.' || c == '_' ||
            c == '+' || c == '-';
   };
-  const bool valid = !label.empty() && label.size() <= 64 && label.front() != '.' && label.front() != '-' &&
+  constexpr const char* kRule = "a label names files, so it must be 1-64 characters from A-Z a-z 0-9 . _ + - and "
+                                "not start with '.' or '-'";
+  if (label.empty()) throw Error(std::string("an empty label: ") + kRule);
+  const bool valid = label.size() <= 64 && label.front() != '.' && label.front() != '-' &&
                      std::all_of(label.begin(), label.end(), allowed);
-  if (!valid)
-    throw Error("label '" + label + "': a label names files, so it must be 1-64 characters from A-Z a-z 0-9 . _ + - " +
-                "and not start with '.' or '-'");
+  if (!valid) throw Error("label '" + escaped_utf8(label) + "': " + kRule);
   if (lower_case(label) == "comparison")
     throw Error("label '" + label + "': the name of a compare's own file (comparison.json); choose another");
 }
@@ -67,8 +70,11 @@ void check_labels(const std::vector<ControllerSpec>& specs) {
 ControllerSpec parse_controller_spec(const std::string& text, const YAML::Node& fallback,
                                      const std::string& fallback_source) {
   ControllerSpec spec;
+  // The spec as the user typed it, for messages: command-line text may hold any bytes.
+  const std::string given = "controller '" + escaped_utf8(text) + "'";
   std::string rest = text;
-  if (const auto equals = rest.find('='); equals != std::string::npos) {
+  const auto equals = rest.find('=');
+  if (equals != std::string::npos) {
     spec.label = rest.substr(0, equals);
     rest = rest.substr(equals + 1);
   }
@@ -76,17 +82,27 @@ ControllerSpec parse_controller_spec(const std::string& text, const YAML::Node& 
   if (const auto colon = rest.find(':'); colon != std::string::npos) {
     file = rest.substr(colon + 1);
     rest = rest.substr(0, colon);
-    if (file.empty()) throw Error("controller '" + text + "': no settings file after ':'");
+    if (file.empty()) throw Error(given + ": no settings file after ':'");
   }
   spec.controller = rest;
-  if (spec.label.empty()) spec.label = spec.controller;
   if (!ControllerRegistry::instance().contains(spec.controller))
-    throw Error("controller '" + text + "': unknown controller '" + spec.controller + "' (known: " + ControllerRegistry::instance().known_names() + ")");
-  check_label(spec.label);
+    throw Error(given + ": unknown controller '" + escaped_utf8(spec.controller) + "' (known: " +
+                ControllerRegistry::instance().known_names() + ")");
+  if (equals == std::string::npos) {
+    spec.label = spec.controller;
+  } else if (spec.label.empty()) {
+    throw Error(given + ": an empty label before '=' (write LABEL=" + spec.controller + ", or " + spec.controller +
+                " alone to be labelled by the controller's name)");
+  }
+  try {
+    check_label(spec.label);
+  } catch (const Error& error) {
+    throw Error(given + ": " + error.what());
+  }
   if (!file.empty()) {
     const YAML::Node settings = load_settings_file(file);
     if (block_of(settings, spec.controller).IsNull())
-      throw Error("controller '" + text + "': " + file + " has no block for '" + spec.controller + "'");
+      throw Error(given + ": " + escaped_utf8(file) + " has no block for '" + spec.controller + "'");
     spec.settings = block_of(settings, spec.controller);
     spec.settings_source = file;
     spec.settings_file = settings;

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/error.hpp"
+#include "core/text_file.hpp"
 
 namespace thetad {
 
@@ -24,12 +25,14 @@ const PlantRegistry::Entry& PlantRegistry::entry(const std::string& name) const 
     if (e.name == name) return e;
   std::string known;
   for (const auto& n : names()) known += (known.empty() ? "" : ", ") + n;
-  throw Error("unknown plant '" + name + "' (known: " + (known.empty() ? "none; a plug-in registers plants" : known) +
+  throw Error("unknown plant '" + escaped_utf8(name) + "' (known: " + (known.empty() ? "none; a plug-in registers plants" : known) +
               ")");
 }
 
 NamedPlant PlantRegistry::make(const std::string& name, const YAML::Node& settings) const {
-  return entry(name).factory(Settings(settings));
+  const Entry& found = entry(name);
+  check_block(settings, name);
+  return found.factory(Settings(settings));
 }
 
 std::vector<std::string> PlantRegistry::names() const {

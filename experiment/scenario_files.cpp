@@ -5,6 +5,7 @@
 #include <cstdlib>
 
 #include "core/error.hpp"
+#include "core/text_file.hpp"
 #include "experiment/build_config.hpp"
 
 namespace thetad {
@@ -39,8 +40,10 @@ fs::path find_scenario(const std::string& file_or_name) {
       looked += (looked.empty() ? "" : ", ") + (folder / "scenarios").string();
     }
   }
-  if (fs::exists(given, error)) throw Error("scenario " + file_or_name + ": not a regular file");
-  throw Error("scenario '" + file_or_name + "': no such file" +
+  // A name from the command line may hold any bytes; the message must still be UTF-8.
+  const std::string name = escaped_utf8(file_or_name);
+  if (fs::exists(given, error)) throw Error("scenario " + name + ": not a regular file");
+  throw Error("scenario '" + name + "': no such file" +
               (looked.empty() ? std::string() : ", nor a shipped scenario of that name (looked in " + looked + ")"));
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include <yaml-cpp/yaml.h>
@@ -168,16 +169,39 @@ heli::ModelOptions read_model(const YAML::Node& node, std::string& preset) {
   return options;
 }
 
+// The flight loop refuses a flight that is too long or shorter than one controller sample
+// (SimulationSettings::validate) without knowing the file or the field: the file's own values (the
+// defaults for what it does not say) are checked here, naming the field that sets them.
+void check_flight_length(const Settings& top, const Settings& simulation, const Scenario& scenario) {
+  const sim::SimulationSettings settings = scenario.simulation_settings({});
+  const Settings& says_duration = scenario.simulation_duration ? simulation : top;
+  if (settings.duration > sim::SimulationSettings::kMaxDuration)
+    throw says_duration.error("duration", "at most 86400 s (one simulated day)");
+  const double period = settings.controller_period();
+  // Named: the field of the file that sets the controller period, or the duration when the file
+  // says neither dt nor controller_period_steps.
+  const std::string period_field = simulation.has("dt")                        ? "dt"
+                                   : simulation.has("controller_period_steps") ? "controller_period_steps"
+                                                                               : "";
+  const auto period_error = [&](const std::string& reason) {
+    return period_field.empty() ? says_duration.error("duration", reason) : simulation.error(period_field, reason);
+  };
+  if (settings.duration < period) {
+    throw period_error("the flight (" + seconds(settings.duration) + ") is shorter than one controller period (" +
+                       seconds(period) + " = dt × controller_period_steps)");
+  }
+  // SimulationSettings::validate's bound: 1e10 samples are days of computing, not a study.
+  if (settings.duration / period > 1e10)
+    throw period_error("a controller period of " + seconds(period) + " gives more than 1e10 controller samples over " +
+                       seconds(settings.duration));
+}
+
 void read_simulation(const YAML::Node& root, Scenario& scenario) {
   const YAML::Node node = child(root, "simulation");
   const Settings simulation(node, "simulation");
   simulation.allow_only({"duration", "dt", "controller_period_steps", "log_every", "summary_only", "timing", "seed",
                          "actuator_limits", "disturbances", "model"});
-  if (simulation.has("duration")) {
-    scenario.simulation_duration = positive(simulation, "duration");
-    if (*scenario.simulation_duration > sim::SimulationSettings::kMaxDuration)
-      throw simulation.error("duration", "at most 86400 s (one simulated day)");
-  }
+  if (simulation.has("duration")) scenario.simulation_duration = positive(simulation, "duration");
   if (simulation.has("dt")) scenario.dt = positive(simulation, "dt");
   if (simulation.has("log_every")) scenario.log_every = simulation.integer("log_every", 1, 1);
   scenario.summary_only = optional_boolean(simulation, "summary_only");
@@ -189,6 +213,9 @@ void read_simulation(const YAML::Node& root, Scenario& scenario) {
     // The controller keeps sampling at 1 kHz with zero-order hold: a plant step must divide 1 ms
     // (or the file says the controller period in steps).
     const double period = sim::SimulationSettings{}.controller_period(), steps = std::round(period / *scenario.dt);
+    if (steps > std::numeric_limits<int>::max())
+      throw simulation.error("dt", seconds(*scenario.dt) + ": more than 2^31 - 1 plant steps per controller period " +
+                                       seconds(period));
     if (steps < 1.0 || std::abs(steps * *scenario.dt - period) > 1e-9 * period) {
       std::ostringstream reason;
       reason << *scenario.dt << " s does not divide the controller period " << period
@@ -216,6 +243,7 @@ void read_simulation(const YAML::Node& root, Scenario& scenario) {
   scenario.induced_velocity_noise = optional_boolean(disturbances, "induced_velocity_noise");
 
   scenario.model_options = read_model(child(node, "model"), scenario.model_preset);
+  check_flight_length(Settings(root), simulation, scenario);
 }
 
 Scenario read_scenario(const YAML::Node& root, const std::string& source) {

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/sim/seed.hpp"
+#include "core/text_file.hpp"
 
 namespace thetad {
 
@@ -12,7 +13,7 @@ namespace {
 
 std::string where(const YAML::Mark& mark, const std::string& source) {
   std::ostringstream prefix;
-  prefix << source;
+  prefix << escaped_utf8(source);
   if (!mark.is_null()) prefix << (source.empty() ? "" : ":") << mark.line + 1 << ":" << mark.column + 1;
   if (prefix.tellp() > 0) prefix << ": ";
   return prefix.str();
@@ -23,7 +24,7 @@ std::string kind_of(const YAML::Node& node) {
     case YAML::NodeType::Null: return "null";
     case YAML::NodeType::Sequence: return "a sequence";
     case YAML::NodeType::Map: return "a map";
-    case YAML::NodeType::Scalar: return "'" + node.Scalar() + "'";
+    case YAML::NodeType::Scalar: return "'" + escaped_utf8(node.Scalar()) + "'";
     case YAML::NodeType::Undefined: break;
   }
   return "nothing";
@@ -52,16 +53,19 @@ SettingsError::SettingsError(std::string field, std::string reason, const YAML::
       mark_(mark),
       source_(std::move(source)) {}
 
+void check_block(const YAML::Node& node, const std::string& name, const std::string& source) {
+  if (node.IsDefined() && !node.IsNull() && !node.IsMap())
+    throw SettingsError(name, "expected a map of fields, got " + kind_of(node), node.Mark(), source);
+}
+
 Settings::Settings(const YAML::Node& node, std::string path)
     : Settings(node, std::move(path), std::make_shared<Record>(), {}) {}
 
 Settings::Settings(const YAML::Node& node, std::string path, std::shared_ptr<Record> record,
                    std::vector<std::string> keys)
     : node_(node), path_(std::move(path)), record_(std::move(record)), keys_(std::move(keys)) {
-  if (node_.IsDefined() && !node_.IsNull() && !node_.IsMap()) {
-    throw SettingsError(path_.empty() ? "settings" : path_, "expected a map of fields, got " + kind_of(node_),
-                        node_.Mark());
-  }
+  // A top-level block's name is its caller's to give (check_block): "settings" stands in for it.
+  check_block(node_, path_.empty() ? "settings" : path_);
 }
 
 std::string Settings::field_name(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
@@ -79,7 +83,8 @@ void Settings::allow_only(std::initializer_list<std::string_view> allowed) const
   for (const auto& item : node_) {
     const std::string key = item.first.Scalar();
     if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
-      throw SettingsError(field_name(key), "unknown field (allowed: " + joined(allowed) + ")", item.first.Mark());
+      throw SettingsError(field_name(escaped_utf8(key)), "unknown field (allowed: " + joined(allowed) + ")",
+                          item.first.Mark());
     }
   }
 }
@@ -176,7 +181,7 @@ std::string Settings::choice(const std::string& key, const std::string& fallback
                              std::initializer_list<std::string_view> choices) const {
   const std::string value = string(key, fallback);
   if (std::find(choices.begin(), choices.end(), value) == choices.end()) {
-    throw error(key, "expected one of " + joined(choices) + ", got '" + value + "'");
+    throw error(key, "expected one of " + joined(choices) + ", got '" + escaped_utf8(value) + "'");
   }
   return value;
 }

@@ -67,6 +67,11 @@ decltype(auto) with_settings_source(const std::string& source, Read&& read) {
   }
 }
 
+// Throws a SettingsError for the field `name` unless `node` is a map, null or undefined (a block
+// with every default). For the callers that know a block's name (a settings file's `theta-d:`, a
+// registry's controller), so that a block of the wrong type is reported under that name.
+void check_block(const YAML::Node& node, const std::string& name, const std::string& source = {});
+
 // One settings block. Getters take the field's key and its default; the node must be a map or
 // null/undefined (no settings: every default).
 class Settings {

@@ -16,6 +16,7 @@
 #include "apps/thetad/optimal_command.hpp"
 #include "apps/thetad/run_command.hpp"
 #include "apps/thetad/tune_command.hpp"
+#include "core/text_file.hpp"
 #include "experiment/build_info.hpp"
 #include "experiment/plugins.hpp"
 
@@ -33,9 +34,10 @@ int main(int argc, char** argv) {
                  "Load a controller plug-in (a shared library built with thetad_add_plugin; repeatable; also "
                  "THETAD_PLUGIN_PATH)");
   app.fallthrough();
-  // Bad arguments are one line too, in the same form as every other error.
+  // Bad arguments are one line too, in the same form as every other error; the arguments it quotes
+  // may hold any bytes, and the line must be UTF-8 (escaped_utf8), as every error line below.
   app.failure_message([](const CLI::App*, const CLI::Error& error) {
-    return std::string("thetad: error: ") + error.what() + " (see --help)\n";
+    return "thetad: error: " + thetad::escaped_utf8(error.what()) + " (see --help)\n";
   });
 
   std::filesystem::path demo_out = "out";
@@ -83,7 +85,7 @@ int main(int argc, char** argv) {
     if (*campaign) return thetad::app::run_campaign_command(campaign_arguments);
     if (*optimal) return thetad::app::run_optimal(optimal_arguments);
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "thetad: error: %s\n", e.what());
+    std::fprintf(stderr, "thetad: error: %s\n", thetad::escaped_utf8(e.what()).c_str());
     return 1;
   }
   return 0;

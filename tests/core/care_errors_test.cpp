@@ -110,7 +110,7 @@ TEST(SolveCareErrors, UnstabilizableUnstableModeIsRefusedByEveryMethod) {
   for (const CareMethod method : {CareMethod::automatic, CareMethod::matrix_sign, CareMethod::schur}) {
     EXPECT_THAT(error_message([&] { solve_care(A, B, MatrixXd::Identity(2, 2), scalar(1), method); }),
                 HasSubstr("the pair (A, B) is not stabilizable: the mode λ = 2+0i of A is not controllable "
-                          "(σ_min[A − λI, B] = 0)"));
+                          "(σ_min[A − λI, B] = 0, B scaled to ‖A‖_F)"));
   }
 }
 

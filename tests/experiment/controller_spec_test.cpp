@@ -66,6 +66,17 @@ TEST_F(ControllerSpecs, BadSpecsAreErrorsNamingWhatIsWrong) {
   for (const char* label : {"../up", ".hidden", "-flag", "a b", "tab\t", "x/y"})
     EXPECT_THAT(error_message([&] { parse_controller_spec(std::string(label) + "=sdre"); }), HasSubstr("label '")) << label;
   EXPECT_THAT(error_message([] { parse_controller_spec(std::string(65, 'a') + "=sdre"); }), HasSubstr("1-64 characters"));
+  EXPECT_THAT(error_message([] { parse_controller_spec("=sdre"); }),
+              HasSubstr("controller '=sdre': an empty label before '='"));
+  // Bytes that are not UTF-8 are echoed escaped, so the message is UTF-8.
+  EXPECT_THAT(error_message([] { parse_controller_spec("caf\xc3=sdre"); }), HasSubstr("label 'caf\\xC3'"));
+  EXPECT_THAT(error_message([] { parse_controller_spec("sd\xffre"); }), HasSubstr("unknown controller 'sd\\xFFre'"));
+}
+
+TEST_F(ControllerSpecs, ASettingsBlockThatIsNotAMapIsNamedByItsController) {
+  std::ofstream(dir_ / "scalar.yaml") << "theta-d: 5\n";
+  EXPECT_THAT(error_message([&] { load_settings_file(dir_ / "scalar.yaml"); }),
+              HasSubstr(path("scalar.yaml") + ":1:10: field 'theta-d': expected a map of fields, got '5'"));
 }
 
 TEST_F(ControllerSpecs, ALabelMayNotRepeat) {

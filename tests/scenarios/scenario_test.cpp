@@ -165,6 +165,13 @@ TEST(Scenario, RunControlsInTheSimulationBlock) {
               HasSubstr("field 'simulation.log_every': expected an integer in [1, "));
   EXPECT_THAT(error_of(kHeader + kTakeoff + kHover + "simulation:\n  duration: 1e6\n"),
               HasSubstr("field 'simulation.duration': at most 86400 s (one simulated day)"));
+  // What the flight loop would refuse without naming the file or the field.
+  EXPECT_THAT(error_of(kHeader + kTakeoff + kHover + "simulation:\n  duration: 1e-4\n"),
+              HasSubstr("field 'simulation.duration': the flight (0.0001 s) is shorter than one controller period"));
+  EXPECT_THAT(error_of(kHeader + kTakeoff + kHover + "simulation:\n  controller_period_steps: 100000\n"),
+              HasSubstr("field 'simulation.controller_period_steps': the flight (12 s) is shorter than one controller"));
+  EXPECT_THAT(error_of(kHeader + kTakeoff + kHover + "simulation:\n  dt: 1e-13\n"),
+              HasSubstr("field 'simulation.dt': 1e-13 s: more than 2^31 - 1 plant steps per controller period"));
 }
 
 TEST(Scenario, AtTwiceTheSpeedTheFlightCoversTheSamePathInHalfTheTime) {
