@@ -9,6 +9,7 @@
 
 #include "controllers/controller.hpp"
 #include "core/helicopter/helicopter.hpp"
+#include "core/registry.hpp"
 #include "settings/settings.hpp"
 
 namespace thetad {
@@ -57,25 +58,10 @@ struct BuiltController {
 
 // The controllers thetad knows by name. Each controller registers itself from its own source file
 // with a static ControllerRegistration, so adding one touches no other file.
-class ControllerRegistry {
+class ControllerRegistry : public Registry<ControllerFactory> {
  public:
   static ControllerRegistry& instance();
 
-  // While one lives, registrations with instance() record `origin` (e.g. "plugin /path/to/lib.so",
-  // around loading a plug-in) instead of "built-in"; its end restores the origin before it.
-  class OriginScope {
-   public:
-    explicit OriginScope(std::string origin);
-    ~OriginScope();
-    OriginScope(const OriginScope&) = delete;
-    OriginScope& operator=(const OriginScope&) = delete;
-
-   private:
-    std::string previous_;
-    bool previously_scoped_;
-  };
-
-  void add(const std::string& name, const std::string& description, ControllerFactory factory);
   // make() and build() throw thetad::Error listing the known names when `name` is unknown.
   std::unique_ptr<Controller> make(const std::string& name, const YAML::Node& settings,
                                    const ControllerContext& context) const;
@@ -84,35 +70,17 @@ class ControllerRegistry {
   // factory honours ControllerContext::settings_only: for the blocks of a settings file that a
   // run does not fly, so that a typo there is found now and not by the next run that flies it.
   void check(const std::string& name, const YAML::Node& settings, const ControllerContext& context) const;
-  std::vector<std::string> names() const;
-  bool contains(const std::string& name) const;
-  // The names, sorted, comma separated: for "unknown controller" messages.
-  std::string known_names() const;
-  const std::string& description(const std::string& name) const;
-  // "built-in", or the origin of the OriginScope that `name` was registered in.
-  const std::string& origin(const std::string& name) const;
-  // The registrations refused inside an OriginScope since the last call (a name already taken),
-  // as messages; outside one a refusal throws from add().
-  std::vector<std::string> take_refusals();
 
  private:
-  struct Entry {
-    std::string name;
-    std::string description;
-    std::string origin;
-    ControllerFactory factory;
-  };
-  const Entry& entry(const std::string& name) const;
-
-  std::vector<Entry> entries_;
-  std::string origin_ = "built-in";
-  bool scoped_ = false;
-  std::vector<std::string> refusals_;
+  ControllerRegistry() : Registry("controller") {}
 };
 
+// `interface_version` is left to its default: it records the version the registering code (a
+// plug-in) was built against.
 struct ControllerRegistration {
-  ControllerRegistration(const std::string& name, const std::string& description, ControllerFactory factory) {
-    ControllerRegistry::instance().add(name, description, std::move(factory));
+  ControllerRegistration(const std::string& name, const std::string& description, ControllerFactory factory,
+                         int interface_version = kPluginInterfaceVersion) {
+    ControllerRegistry::instance().add(name, description, std::move(factory), interface_version);
   }
 };
 

@@ -23,11 +23,16 @@ struct PositionIntegral {
   }
 };
 
-// What the controller is asked to track at one sample: the commanded inertial position (NED) and
-// its integral by the PositionIntegral rule (the "∫x_c dt" entries of Eq. 36).
+// What the controller is asked to track at one sample: the commanded inertial position (NED), its
+// integral by the PositionIntegral rule (the "∫x_c dt" entries of Eq. 36), and the commanded
+// velocity and acceleration, the position's exact time derivatives (right-continuous: at a phase
+// boundary, the new phase's). A controller may use any of them; the paper's θ–D and SDRE use the
+// position and its integral only.
 struct Reference {
   Eigen::Vector3d position = Eigen::Vector3d::Zero();
   Eigen::Vector3d integral = Eigen::Vector3d::Zero();
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();      // m/s, NED
+  Eigen::Vector3d acceleration = Eigen::Vector3d::Zero();  // m/s², NED
 };
 
 // A commanded position as a function of time. Only the position: the simulator integrates it with
@@ -39,6 +44,10 @@ class ReferenceTrajectory {
  public:
   virtual ~ReferenceTrajectory() = default;
   virtual Eigen::Vector3d position(double t) const = 0;
+  // The exact first and second time derivatives of position(t), from the right where they jump
+  // (a step's jump itself is not one: both are those of the motion after it).
+  virtual Eigen::Vector3d velocity(double t) const = 0;
+  virtual Eigen::Vector3d acceleration(double t) const = 0;
 };
 
 // Holds one point: hover tests and open-loop runs.
@@ -46,6 +55,8 @@ class FixedPosition final : public ReferenceTrajectory {
  public:
   explicit FixedPosition(const Eigen::Vector3d& position) : position_(position) {}
   Eigen::Vector3d position(double) const override { return position_; }
+  Eigen::Vector3d velocity(double) const override { return Eigen::Vector3d::Zero(); }
+  Eigen::Vector3d acceleration(double) const override { return Eigen::Vector3d::Zero(); }
 
  private:
   Eigen::Vector3d position_;

@@ -10,9 +10,9 @@ namespace thetad {
 
 namespace {
 
-// The four cyclic/pedal/collective commands are angles (rad): one number for the table, the
-// root-sum-square of their RMS values; the result files keep every channel.
-double angle_effort(const sim::RunSummary& s) { return s.command_rms.tail<4>().norm(); }
+// The inputs after the first (the helicopter's pedal, collective and cyclics, all angles) in one
+// number for the table: the root-sum-square of their RMS values; the result files keep every channel.
+double other_inputs_effort(const sim::RunSummary& s) { return s.command_rms.tail(s.command_rms.size() - 1).norm(); }
 
 void append(std::string& text, const char* pattern, auto... values) {
   char line[512];
@@ -27,17 +27,36 @@ std::string comparison_table(const std::vector<RunResult>& runs) {
   for (const RunResult& run : runs) width = std::max(width, run.spec.label.size());
   const int w = static_cast<int>(width);
   const bool timing = !runs.empty() && runs.front().summary.settings.measure_compute_time;
+  // The columns are the plant's: one per tracked state (and the 3-D RMS error), the first input
+  // and the others together. The runs of one table flew one plant.
+  const sim::RunSummary none;
+  const sim::RunSummary& shape = runs.empty() ? none : runs.front().summary;
+  const auto axes = static_cast<int>(shape.tracked.size());
+  const std::string unit = shape.tracked.empty() ? "" : " (" + shape.tracked.front().command.unit + ")";
+  const std::string first = shape.inputs.empty() ? "" : "RMS " + shape.inputs.front().name;
+  const std::string first_unit = shape.inputs.empty() ? "" : "(" + shape.inputs.front().unit + ")";
   std::string text;
-  append(text, "%-*s  %-22s %27s %27s %9s %9s %11s %17s\n", w, "", "", "RMS position error (m)",
-         "max position error (m)", "RMS T_mr", "RMS angle", "", timing ? "in-flight us/step" : "");
-  append(text, "%-*s  %-22s %9s%9s%9s %9s%9s%9s %9s %9s %11s %8s %8s\n", w, "controller", "status", "x", "y", "z", "x",
-         "y", "z", "(N)", "cmd (rad)", "cost J", timing ? "median" : "", timing ? "p99" : "");
+  append(text, "%-*s  %-22s", w, "", "");
+  if (axes > 0) append(text, " %*s %*s", 9 * (axes + 1), ("RMS tracking error" + unit).c_str(), 9 * axes, ("max tracking error" + unit).c_str());
+  append(text, " %9s %9s %11s %17s\n", first.c_str(), shape.inputs.size() > 1 ? "RMS other" : "", "",
+         timing ? "in-flight us/step" : "");
+  append(text, "%-*s  %-22s", w, "controller", "status");
+  if (axes > 0) {
+    for (const auto& tracked : shape.tracked) append(text, "%9s", tracked.axis.c_str());
+    append(text, "%9s ", "3-D");
+    for (const auto& tracked : shape.tracked) append(text, "%9s", tracked.axis.c_str());
+  }
+  append(text, " %9s %9s %11s %8s %8s\n", first_unit.c_str(), shape.inputs.size() > 1 ? "inputs" : "", "cost J",
+         timing ? "median" : "", timing ? "p99" : "");
   for (const RunResult& run : runs) {
     const sim::RunSummary& s = run.summary;
-    append(text, "%-*s  %-22s %9.4f%9.4f%9.4f %9.4f%9.4f%9.4f %9.3f %9.4f %11.4g", w, run.spec.label.c_str(),
-           status_text(s).c_str(), s.rms_tracking_error.x(), s.rms_tracking_error.y(), s.rms_tracking_error.z(),
-           s.max_tracking_error.x(), s.max_tracking_error.y(), s.max_tracking_error.z(), s.command_rms[0],
-           angle_effort(s), s.cost);
+    append(text, "%-*s  %-22s", w, run.spec.label.c_str(), status_text(s).c_str());
+    if (axes > 0) {
+      for (Eigen::Index k = 0; k < s.rms_tracking_error.size(); ++k) append(text, "%9.4f", s.rms_tracking_error[k]);
+      append(text, "%9.4f ", s.rms_tracking_error.norm());
+      for (Eigen::Index k = 0; k < s.max_tracking_error.size(); ++k) append(text, "%9.4f", s.max_tracking_error[k]);
+    }
+    append(text, " %9.4g %9.4f %11.4g", s.command_rms.size() > 0 ? s.command_rms[0] : 0.0, other_inputs_effort(s), s.cost);
     if (timing) append(text, " %8.1f %8.1f", s.compute_ns_median * 1e-3, s.compute_ns_p99 * 1e-3);
     text += "\n";
   }

@@ -17,20 +17,22 @@ namespace thetad {
 
 namespace {
 
-// The scenario and the SHA-256 of the very bytes it was parsed from.
-Scenario load(const std::string& file_or_name, std::string& sha256) {
-  const std::filesystem::path file = find_scenario(file_or_name);
-  const std::string text = read_text_file(file);
-  sha256 = sha256_hex(text);
-  return parse_scenario(text, file.string());
-}
-
 }  // namespace
 
 Flight::Flight(const std::string& scenario, const RunControls& controls)
-    : scenario_(at_speed(controls, load(scenario, provenance_.scenario_sha256))),
+    : Flight(ScenarioText{read_text_file(find_scenario(scenario)), find_scenario(scenario).string()}, controls) {}
+
+Flight Flight::from_text(const std::string& text, const std::string& file, const RunControls& controls) {
+  return Flight(ScenarioText{text, file}, controls);
+}
+
+Flight::Flight(const ScenarioText& source, const RunControls& controls)
+    : scenario_(at_speed(controls, parse_scenario(source.text, source.file))),
       settings_(scenario_.simulation_settings()),
       initial_state_(offset_initial_state(controls, scenario_.initial_state)) {
+  // The very bytes it was parsed from, so that a replay needs no file that may have changed.
+  provenance_.scenario_text = source.text;
+  provenance_.scenario_sha256 = sha256_hex(source.text);
   const auto helicopter = std::make_shared<const heli::Helicopter>(heli::Parameters::nominal(), scenario_.model_options);
   helicopter_ = helicopter.get();
   plant_ = helicopter;

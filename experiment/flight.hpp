@@ -37,6 +37,8 @@ class Flight {
   // The helicopter through `scenario`: a file, or the name of a shipped scenario (find_scenario),
   // with the paper's disturbances (sim::HelicopterDisturbances) as the scenario and controls set them.
   explicit Flight(const std::string& scenario, const RunControls& controls = {});
+  // The same from a scenario's text, as a result recorded it; `file` names it in messages.
+  static Flight from_text(const std::string& text, const std::string& file, const RunControls& controls);
   // `plant` (named `name` in results) as it is (sim::NoDisturbances), from `initial_state`,
   // regulated to the origin for controls.duration (required). Throws thetad::Error naming what is
   // wrong.
@@ -82,11 +84,16 @@ class Flight {
   RunResult fly(PreparedController& prepared, Progress* progress = nullptr, const std::string& heading = {}) const;
 
  private:
+  struct ScenarioText {
+    std::string text;
+    std::string file;
+  };
   Flight() = default;
+  Flight(const ScenarioText& source, const RunControls& controls);
   // The columns of a run's log: what SimulationSettings::check_memory needs.
   std::size_t log_width() const;
 
-  Provenance provenance_;  // first: the scenario's loading fills in its SHA-256
+  Provenance provenance_;
   Scenario scenario_;
   sim::SimulationSettings settings_;
   Eigen::VectorXd initial_state_;

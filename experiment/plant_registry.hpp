@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 #include <yaml-cpp/yaml.h>
 
+#include "core/registry.hpp"
 #include "core/sdc_plant.hpp"
 #include "settings/settings.hpp"
 
@@ -21,29 +22,22 @@ struct NamedPlant {
 };
 using PlantFactory = std::function<NamedPlant(const Settings& settings)>;
 
-class PlantRegistry {
+class PlantRegistry : public Registry<PlantFactory> {
  public:
   static PlantRegistry& instance();
-  // Throws thetad::Error when the name is taken.
-  void add(const std::string& name, const std::string& description, PlantFactory factory);
   // The plant `name` built from its settings block (null: every default). Throws thetad::Error
   // listing the known names when `name` is unknown.
   NamedPlant make(const std::string& name, const YAML::Node& settings) const;
-  std::vector<std::string> names() const;
-  const std::string& description(const std::string& name) const;
 
  private:
-  struct Entry {
-    std::string name, description;
-    PlantFactory factory;
-  };
-  const Entry& entry(const std::string& name) const;
-  std::vector<Entry> entries_;
+  PlantRegistry();
 };
 
+// As ControllerRegistration: `interface_version` records the version the plug-in was built against.
 struct PlantRegistration {
-  PlantRegistration(const std::string& name, const std::string& description, PlantFactory factory) {
-    PlantRegistry::instance().add(name, description, std::move(factory));
+  PlantRegistration(const std::string& name, const std::string& description, PlantFactory factory,
+                    int interface_version = kPluginInterfaceVersion) {
+    PlantRegistry::instance().add(name, description, std::move(factory), interface_version);
   }
 };
 

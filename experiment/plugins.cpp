@@ -10,6 +10,7 @@
 #include <string>
 
 #include "controllers/registry.hpp"
+#include "experiment/plant_registry.hpp"
 #include "core/error.hpp"
 #include "experiment/sha256.hpp"
 
@@ -26,16 +27,16 @@ void load_plugin(const fs::path& library) {
   if (error) throw Error("plug-in " + library.string() + ": " + error.message());
   if (loaded.count(file) > 0) return;
   // The registrations run inside dlopen(): the scope names where they come from.
-  ControllerRegistry& registry = ControllerRegistry::instance();
   {
     // The digest makes results name the very library that flew (provenance: the controller's origin).
-    const ControllerRegistry::OriginScope origin("plug-in " + file.string() + " (sha256 " + sha256_of_file(file) + ")");
+    const RegistrationOrigin origin("plug-in " + file.string() + " (sha256 " + sha256_of_file(file) + ")");
     // RTLD_NOW: a symbol the program does not provide is an error now, not a crash mid-flight.
     if (dlopen(file.c_str(), RTLD_NOW | RTLD_LOCAL) == nullptr)
       throw Error("cannot load plug-in " + file.string() + ": " + dlerror());
   }
   loaded.insert(file);
-  const std::vector<std::string> refused = registry.take_refusals();
+  std::vector<std::string> refused = ControllerRegistry::instance().take_refusals();
+  for (auto& refusal : PlantRegistry::instance().take_refusals()) refused.push_back(std::move(refusal));
   if (!refused.empty()) throw Error("plug-in " + file.string() + ": " + refused.front());
 }
 

@@ -20,6 +20,7 @@ nlohmann::ordered_json to_json(const Provenance& p) {
   j["lapack_loaded"] = p.build.lapack_loaded;
   j["plant"] = p.plant;
   j["scenario"] = {{"name", p.scenario_name}, {"file", p.scenario_file}, {"sha256", p.scenario_sha256}};
+  if (!p.scenario_text.empty()) j["scenario"]["text"] = p.scenario_text;
   j["model"] = {{"preset", p.model_preset}, {"options", p.model_options}};
   j["seed"] = p.seed;
   j["dt_s"] = p.dt;

@@ -21,6 +21,7 @@ struct Provenance {
   std::string scenario_name;
   std::string scenario_file;    // as given (absolute when it was found by name)
   std::string scenario_sha256;  // of the file's bytes
+  std::string scenario_text;    // those bytes (empty for a plant's flight, which has no scenario file)
   std::string model_preset;     // "resolved" or "paper"
   std::string model_options;    // every switch, heli::ModelOptions::to_string()
   std::uint64_t seed = 0;

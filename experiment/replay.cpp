@@ -1,13 +1,16 @@
 #include "experiment/replay.hpp"
 
 #include <array>
-#include <string_view>
+#include <iterator>
+#include <string>
+#include <vector>
 
 #include "core/error.hpp"
 #include "experiment/flight.hpp"
 #include "experiment/result_json.hpp"
 #include "experiment/sha256.hpp"
 #include "experiment/json_file.hpp"
+#include "experiment/plant_registry.hpp"
 
 namespace thetad {
 
@@ -16,9 +19,10 @@ namespace {
 using Json = nlohmann::ordered_json;
 
 // The figures that decide whether two runs are the same run (not the wall-clock ones).
-constexpr const char* kCompared[] = {"status",           "reason",           "end_time_s",         "controller_samples",
-                                     "parameter_factors", "controller_counters", "tracking_error_m", "control_effort",
-                                     "saturation",       "cost"};
+// (The tracking errors, under tracking_error_key(), besides.)
+constexpr const char* kCompared[] = {"status",          "reason",     "end_time_s",     "controller_samples",
+                                     "parameter_factors", "controller_counters", "control_effort", "saturation",
+                                     "cost"};
 
 RunControls controls_of(const Json& settings, const Json& provenance) {
   RunControls controls;
@@ -51,6 +55,35 @@ RunControls controls_of(const Json& settings, const Json& provenance) {
   return controls;
 }
 
+// The flight a result recorded: its plant's from the registry, its scenario's from the text it
+// recorded (version 2) or else from its file, which must still be the recorded bytes (version 1).
+Flight recorded_flight(const Json& recorded, const std::string& file) {
+  const Json& provenance = recorded.at("provenance");
+  const RunControls controls = controls_of(recorded.at("settings"), provenance);
+  const std::string plant = provenance.value("plant", "helicopter");
+  if (plant != "helicopter") {
+    if (!PlantRegistry::instance().contains(plant))
+      throw Error(file + ": the run flew the plant '" + plant + "', which no loaded plug-in registers (load the " +
+                  "plug-in that has it with --plugin or THETAD_PLUGIN_PATH)");
+    const std::vector<double> x0 = provenance.at("initial_state").get<std::vector<double>>();
+    return Flight::of_plant(plant, Eigen::Map<const Eigen::VectorXd>(x0.data(), static_cast<Eigen::Index>(x0.size())),
+                            controls);
+  }
+  const Json& scenario = provenance.at("scenario");
+  const std::string scenario_file = scenario.at("file").get<std::string>();
+  const std::string sha = scenario.at("sha256").get<std::string>();
+  if (scenario.contains("text")) {
+    const std::string text = scenario.at("text").get<std::string>();
+    if (sha256_hex(text) != sha)
+      throw Error(file + ": the recorded scenario text does not have the recorded SHA-256 (the file was edited)");
+    return Flight::from_text(text, scenario_file, controls);
+  }
+  if (sha256_of_file(scenario_file) != sha)
+    throw Error(file + ": the scenario " + scenario_file +
+                " has changed since the run (its SHA-256 differs from the recorded one)");
+  return Flight(scenario_file, controls);
+}
+
 }  // namespace
 
 Replay replay(const std::filesystem::path& result_file, Progress* progress) {
@@ -58,20 +91,17 @@ Replay replay(const std::filesystem::path& result_file, Progress* progress) {
   if (!recorded.is_object() || recorded.value("format", "") != kRunFormat)
     throw Error(result_file.string() + ": not a thetad run result (format " + std::string(kRunFormat) + ")");
   try {
-    const Json& provenance = recorded.at("provenance");
-    const std::string scenario = provenance.at("scenario").at("file").get<std::string>();
-    const std::string sha = provenance.at("scenario").at("sha256").get<std::string>();
-    if (sha256_of_file(scenario) != sha)
-      throw Error(result_file.string() + ": the scenario " + scenario +
-                  " has changed since the run (its SHA-256 differs from the recorded one)");
-    const Flight flight(scenario, controls_of(recorded.at("settings"), provenance));
+    run_format_version(recorded, result_file.string());
+    const Flight flight = recorded_flight(recorded, result_file.string());
     ControllerSpec spec{recorded.at("label").get<std::string>(), recorded.at("controller").get<std::string>(),
                         json_to_yaml(recorded.at("controller_settings")), result_file.string(), {}};
     PreparedController prepared = flight.prepare(spec);
     Replay outcome{flight.fly(prepared, progress), {}};
     const Json again = summary_json(outcome.result.summary);
-    for (const char* field : kCompared) {
-      if (std::string_view(field) == "saturation" && !recorded.contains(field)) continue;  // an older result
+    std::vector<std::string> compared(std::begin(kCompared), std::end(kCompared));
+    compared.push_back(tracking_error_key(outcome.result.summary));
+    for (const std::string& field : compared) {
+      if (field == "saturation" && !recorded.contains(field)) continue;  // an older result
       if (again.at(field) != recorded.at(field))
         outcome.differences.push_back(std::string(field) + ": recorded " + recorded.at(field).dump() + ", replayed " +
                                       again.at(field).dump());

@@ -14,9 +14,10 @@ struct Replay {
   std::vector<std::string> differences;  // summary fields that differ from the recorded ones; empty: agrees
 };
 
-// Flies again exactly the run a result file describes, from what it says alone: the scenario file
-// (which must still have the recorded SHA-256), the controller with its recorded settings, the
-// seed, dt, duration, logging and disturbance switches. Compares every summary figure but the
+// Flies again exactly the run a result file describes, from what it says alone: the scenario as
+// it recorded it (results of format_version 1: the scenario file, which must still have the
+// recorded SHA-256), or the plant and its initial state, the controller with its recorded
+// settings, the seed, dt, duration, logging and disturbance switches. Compares every summary figure but the
 // wall-clock ones. Throws thetad::Error when the file cannot be replayed (and says why).
 Replay replay(const std::filesystem::path& result_file, Progress* progress = nullptr);
 

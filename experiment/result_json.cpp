@@ -2,6 +2,8 @@
 
 #include <string_view>
 
+#include "core/error.hpp"
+
 namespace thetad {
 
 namespace {
@@ -58,6 +60,14 @@ std::string tracking_error_key(const sim::RunSummary& summary) {
   return summary.tracked.empty() || summary.tracked.front().command.unit.empty()
              ? "tracking_error"
              : "tracking_error_" + summary.tracked.front().command.unit;
+}
+
+int run_format_version(const Json& result, const std::string& file) {
+  const int version = result.value("format_version", 1);
+  if (version > kRunFormatVersion)
+    throw Error(file + ": written by a newer thetad (format_version " + std::to_string(version) + "; this one reads up to " +
+                std::to_string(kRunFormatVersion) + ")");
+  return version;
 }
 
 std::vector<LogColumn> log_columns(const std::vector<LogColumn>& schema, bool timing) {
@@ -126,6 +136,7 @@ Json summary_json(const sim::RunSummary& summary) {
 Json result_json(const RunResult& result, const LogFile* log) {
   Json j;
   j["format"] = kRunFormat;
+  j["format_version"] = kRunFormatVersion;
   j["label"] = result.spec.label;
   j["controller"] = result.spec.controller;
   j["controller_origin"] = result.controller_origin;

@@ -27,7 +27,16 @@ std::vector<LogColumn> log_columns(const std::vector<LogColumn>& schema, bool ti
 // The whole result: {"format", "label", "controller" (registered name), the summary's fields,
 // "controller_settings", "settings_source", "log" (the CSV's file name, SHA-256, rows and columns;
 // null when summary-only), "provenance", "wall_seconds" (with timing only)}.
+// Its "format_version" says which fields it has; readers take every earlier version:
+//   1 (no "format_version"): the helicopter's flights only; the scenario by file and SHA-256.
+//   2: "log.columns" lists the CSV's columns (a plant's own); "provenance.plant" names the plant,
+//      "provenance.scenario.text" holds the scenario as flown, "provenance.initial_state" where a
+//      plant's flight started.
 inline constexpr const char* kRunFormat = "thetad-run-1";
+inline constexpr int kRunFormatVersion = 2;
+// The version of `result` (1 when it says none); throws thetad::Error naming `file` when it is of
+// a newer thetad than this one.
+int run_format_version(const nlohmann::ordered_json& result, const std::string& file);
 struct LogFile {
   std::string file;    // name in the result's folder
   std::string sha256;

@@ -170,6 +170,7 @@ StoredRun read_run_files(const fs::path& json_file) {
   if (!run.result.is_object() || run.result.value("format", "") != kRunFormat)
     throw Error(where + "not a thetad run result (format '" + std::string(kRunFormat) +
                 "'; results of an older thetad must be flown again)");
+  run_format_version(run.result, json_file.string());
   run.label = run.result.value("label", "");
   const Json& log = run.result["log"];
   if (log.is_null()) return run;

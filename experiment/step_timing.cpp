@@ -102,6 +102,19 @@ void pass(Controller& controller, const RecordedSamples& samples, const Plan& pl
   }
 }
 
+// The change of the median between the first and the second half of the passes (`per_pass` calls
+// each) in `calls`: a host whose speed drifts during the timing shows it.
+double median_drift(const std::vector<double>& calls, std::size_t per_pass) {
+  const std::size_t passes = calls.size() / per_pass, half = passes / 2 * per_pass;
+  const auto median_of = [](std::vector<double> values) {
+    std::sort(values.begin(), values.end());
+    return sim::nearest_rank(values, 0.5);
+  };
+  if (half == 0) return 0.0;
+  return std::abs(median_of({calls.begin() + static_cast<std::ptrdiff_t>(half), calls.end()}) -
+                  median_of({calls.begin(), calls.begin() + static_cast<std::ptrdiff_t>(half)}));
+}
+
 }  // namespace
 
 RecordedSamples record_samples(const Flight& flight, PreparedController& prepared, Progress* progress) {
@@ -128,27 +141,65 @@ StepTimingReport time_steps(std::vector<PreparedController>& controllers, const 
   report.cpu = pin(options.cpu);
   Eigen::VectorXd u(input_dim);
   for (auto& prepared : controllers) {
-    report.controllers.push_back({prepared.spec.label, prepared.spec.controller, {}, 0, 0, 0, 0, 0, false});
-    report.controllers.back().nanoseconds.reserve(report.samples * static_cast<std::size_t>(options.repetitions));
+    report.controllers.push_back({prepared.spec.label, prepared.spec.controller, {}, 0, 0, 0, 0, 0, 0, 0,
+                                  RealTimeVerdict::not_capable});
+    report.controllers.back().nanoseconds.reserve(report.samples * static_cast<std::size_t>(3 * options.repetitions));
   }
   for (int warmup = 0; warmup < options.warmup_passes; ++warmup)
     for (auto& prepared : controllers) pass(*prepared.controller, samples, timed, initial_state, u, nullptr, prepared.spec.label);
+  const HostSnapshot before = host_snapshot();
   // Interleaved: repetition r of every controller before repetition r + 1 of any.
-  for (int repetition = 0; repetition < options.repetitions; ++repetition)
+  const auto repeat = [&] {
     for (std::size_t c = 0; c < controllers.size(); ++c)
       pass(*controllers[c].controller, samples, timed, initial_state, u, &report.controllers[c].nanoseconds,
            controllers[c].spec.label);
+    ++report.repetitions;
+  };
+  while (report.repetitions < options.repetitions) repeat();
+  const auto settled = [&] {
+    return std::all_of(report.controllers.begin(), report.controllers.end(), [&](StepTiming& timing) {
+      timing.median_drift = median_drift(timing.nanoseconds, report.samples);
+      return settled_median(timing);
+    });
+  };
+  while (!(report.stable = settled()) && report.repetitions < 3 * options.repetitions) repeat();
+  report.host = host_conditions(before, host_snapshot(), report.cpu);
+  const double budget_ns = options.budget_seconds * 1e9;
   for (StepTiming& timing : report.controllers) {
     std::vector<double> sorted = timing.nanoseconds;
     std::sort(sorted.begin(), sorted.end());
     timing.median = sim::nearest_rank(sorted, 0.5);
+    timing.median_drift = median_drift(timing.nanoseconds, report.samples);
     timing.p10 = sim::nearest_rank(sorted, 0.1);
     timing.p90 = sim::nearest_rank(sorted, 0.9);
     timing.p99 = sim::nearest_rank(sorted, 0.99);
     timing.max = sorted.back();
-    timing.real_time = timing.max < options.budget_seconds * 1e9;
+    timing.overruns = static_cast<std::size_t>(sorted.end() - std::upper_bound(sorted.begin(), sorted.end(), budget_ns));
+    timing.verdict = real_time_verdict(timing.p99, static_cast<double>(timing.overruns) / static_cast<double>(sorted.size()),
+                                       budget_ns);
   }
   return report;
+}
+
+RealTimeVerdict real_time_verdict(double p99, double overrun_share, double budget) {
+  if (p99 > budget) return RealTimeVerdict::not_capable;
+  if (p99 <= kCapableShare * budget && overrun_share <= kOverrunShare) return RealTimeVerdict::capable;
+  return RealTimeVerdict::marginal;
+}
+
+bool settled_median(const StepTiming& timing) {
+  std::vector<double> sorted = timing.nanoseconds;
+  std::sort(sorted.begin(), sorted.end());
+  return timing.median_drift <= std::max(kStableDrift * sim::nearest_rank(sorted, 0.5), kTimerResolutionNs);
+}
+
+const char* verdict_name(RealTimeVerdict verdict) {
+  switch (verdict) {
+    case RealTimeVerdict::capable: return "capable";
+    case RealTimeVerdict::marginal: return "marginal";
+    case RealTimeVerdict::not_capable: return "not capable";
+  }
+  return "unknown";
 }
 
 std::string step_timing_table(const StepTimingReport& report) {
@@ -157,25 +208,45 @@ std::string step_timing_table(const StepTimingReport& report) {
   const int w = static_cast<int>(width);
   const double budget_us = report.options.budget_seconds * 1e6;
   std::string text;
-  char line[256];
-  std::snprintf(line, sizeof line, "%-*s %10s %10s %10s %10s %10s %9s  %s\n", w, "controller", "median us", "p10 us",
-                "p90 us", "p99 us", "max us", "budget", "one core at 1 kHz");
+  char line[320];
+  std::snprintf(line, sizeof line, "%-*s %10s %10s %10s %10s %10s %9s %9s  %s\n", w, "controller", "median us", "p10 us",
+                "p90 us", "p99 us", "max us", "budget", "overruns", "one core at the period");
   text += line;
   for (const auto& t : report.controllers) {
-    std::snprintf(line, sizeof line, "%-*s %10.2f %10.2f %10.2f %10.2f %10.2f %8.1f%%  %s\n", w, t.label.c_str(),
+    std::snprintf(line, sizeof line, "%-*s %10.2f %10.2f %10.2f %10.2f %10.2f %8.1f%% %9zu  %s\n", w, t.label.c_str(),
                   t.median * 1e-3, t.p10 * 1e-3, t.p90 * 1e-3, t.p99 * 1e-3, t.max * 1e-3,
-                  100.0 * t.median * 1e-3 / budget_us,
-                  t.real_time ? "real-time capable (worst case within the period)" : "NOT real-time (worst case over the period)");
+                  100.0 * t.median * 1e-3 / budget_us, t.overruns, verdict_name(t.verdict));
     text += line;
   }
   std::snprintf(line, sizeof line,
                 "%zu timed steps (%d runs of consecutive 1 kHz samples spread over the flight) x %d repetitions per "
                 "controller (interleaved, after %d warm-up pass%s), %s; budget: the %.3g ms controller period.\n",
-                report.samples, report.options.segments, report.options.repetitions, report.options.warmup_passes,
+                report.samples, report.options.segments, report.repetitions, report.options.warmup_passes,
                 report.options.warmup_passes == 1 ? "" : "es",
                 report.cpu >= 0 ? ("pinned to core " + std::to_string(report.cpu)).c_str() : "not pinned",
                 report.options.budget_seconds * 1e3);
   text += line;
+  std::snprintf(line, sizeof line,
+                "Verdict: capable when p99 <= %.0f %% of the period and at most %.1f %% of the calls overrun it; not "
+                "capable when p99 overruns it; marginal in between.\n",
+                100.0 * kCapableShare, 100.0 * kOverrunShare);
+  text += line;
+  const HostConditions& host = report.host;
+  std::snprintf(line, sizeof line,
+                "Host: %s, governor %s; load %.2f before, %.2f after; steal %.1f %%, busiest other core %.1f %%, "
+                "timed thread waiting %.1f %%.\n",
+                host.cpu_model.c_str(), host.governor.c_str(), host.load_before, host.load_after, 100.0 * host.steal,
+                100.0 * host.other_cores_busy, 100.0 * host.own_wait);
+  text += line;
+  for (const auto& warning : host.warnings) text += "WARNING: the host was loaded: " + warning + "; the figures and verdicts are not the controllers' alone.\n";
+  for (const auto& t : report.controllers) {
+    if (settled_median(t)) continue;
+    std::snprintf(line, sizeof line,
+                  "WARNING: %s's median did not settle: it moved by %.3f us (%.1f %%) between the first and the second "
+                  "half of %d passes.\n",
+                  t.label.c_str(), t.median_drift * 1e-3, 100.0 * t.median_drift / t.median, report.repetitions);
+    text += line;
+  }
   return text;
 }
 
@@ -184,10 +255,16 @@ nlohmann::ordered_json to_json(const StepTimingReport& report) {
   j["format"] = "thetad-bench-1";
   j["timed_steps_per_pass"] = report.samples;
   j["segments"] = report.options.segments;
-  j["repetitions"] = report.options.repetitions;
+  j["repetitions"] = report.repetitions;
+  j["medians_stable"] = report.stable;
   j["warmup_passes"] = report.options.warmup_passes;
   j["cpu"] = report.cpu;
   j["budget_s"] = report.options.budget_seconds;
+  j["verdict_rule"] = {{"capable_p99_share", kCapableShare},
+                       {"overrun_share", kOverrunShare},
+                       {"stable_median_drift", kStableDrift},
+                       {"timer_resolution_ns", kTimerResolutionNs}};
+  j["host"] = to_json(report.host);
   j["controllers"] = nlohmann::ordered_json::array();
   for (const auto& t : report.controllers) {
     j["controllers"].push_back({{"label", t.label},
@@ -198,8 +275,11 @@ nlohmann::ordered_json to_json(const StepTimingReport& report) {
                                 {"p90_ns", t.p90},
                                 {"p99_ns", t.p99},
                                 {"max_ns", t.max},
+                                {"overruns", t.overruns},
+                                {"median_drift_ns", t.median_drift},
                                 {"budget_share_median", t.median * 1e-9 / report.options.budget_seconds},
-                                {"real_time_capable", t.real_time}});
+                                {"verdict", verdict_name(t.verdict)},
+                                {"real_time_capable", t.verdict == RealTimeVerdict::capable}});
   }
   return j;
 }

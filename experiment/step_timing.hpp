@@ -8,6 +8,7 @@
 
 #include "core/control_law.hpp"
 #include "experiment/flight.hpp"
+#include "experiment/host_conditions.hpp"
 
 namespace thetad {
 
@@ -36,29 +37,56 @@ RecordedSamples record_samples(const Flight& flight, PreparedController& prepare
 // runs of consecutive samples spread evenly over the flight, `samples` in all; before each run the
 // controller steps through kSettleSamples samples untimed, so that no timed step starts from a
 // state seconds away.
+// The passes repeat until every controller's median is settled (settled_median) or 3 ×
+// `repetitions` passes have run; the report says which.
 struct StepTimingOptions {
   int samples = 1000;        // timed calls per controller and pass
   int segments = 10;
   int warmup_passes = 1;     // passes over the samples before timing
-  int repetitions = 5;       // timed passes per controller
+  int repetitions = 5;       // timed passes per controller, at least
   int cpu = -1;              // core to pin to; -1: the last core this process may use; -2: no pinning
   double budget_seconds = 1e-3;  // the controller period (1 kHz)
 };
+
+// Whether one core keeps up with the controller period, decided on a high percentile with a
+// margin and on the share of calls over the period, so that an isolated preemption does not flip
+// it and two runs near the boundary do not disagree:
+//   capable:     p99 ≤ kCapableShare × budget and at most kOverrunShare of the calls over it;
+//   not capable: p99 over the budget;
+//   marginal:    in between.
+enum class RealTimeVerdict { capable, marginal, not_capable };
+inline constexpr double kCapableShare = 0.5;
+inline constexpr double kOverrunShare = 1e-3;
+// A median is settled when the medians of the first and the second half of the passes differ by at
+// most kStableDrift of it, or by the clock's resolution for steps that short.
+inline constexpr double kStableDrift = 0.03;
+inline constexpr double kTimerResolutionNs = 50.0;
+// The verdict for a 99th percentile `p99` and a share of calls over the budget (p99 and budget in
+// one unit).
+RealTimeVerdict real_time_verdict(double p99, double overrun_share, double budget);
+const char* verdict_name(RealTimeVerdict verdict);
 
 struct StepTiming {
   std::string label;
   std::string controller;
   std::vector<double> nanoseconds;  // every timed call, in call order
   double median = 0, p10 = 0, p90 = 0, p99 = 0, max = 0;  // ns
-  // Whether one core keeps up at the budget in the worst case measured (max < budget).
-  bool real_time = false;
+  std::size_t overruns = 0;          // calls over the budget
+  double median_drift = 0;           // |median of the second half of the passes − of the first| (ns)
+  RealTimeVerdict verdict = RealTimeVerdict::not_capable;
 };
+
+// Whether the median of `timing` settled (kStableDrift).
+bool settled_median(const StepTiming& timing);
 
 struct StepTimingReport {
   std::vector<StepTiming> controllers;
   int cpu = -1;  // the core the timing ran on (-1: not pinned)
   std::size_t samples = 0;  // timed per pass
+  int repetitions = 0;      // passes run per controller
+  bool stable = false;      // every controller's median settled
   StepTimingOptions options;
+  HostConditions host;      // what the host did meanwhile
 };
 
 inline constexpr std::size_t kSettleSamples = 10;
@@ -69,7 +97,8 @@ StepTimingReport time_steps(std::vector<PreparedController>& controllers, const 
                             const Eigen::VectorXd& initial_state, Eigen::Index input_dim,
                             const StepTimingOptions& options);
 
-// The report as a table (median, p10, p90, p99, max in µs, share of the budget, verdict).
+// The report as a table (median, p10, p90, p99, max in µs, share of the budget, verdict), then
+// the host's conditions and a warning when it was loaded or a median did not settle.
 std::string step_timing_table(const StepTimingReport& report);
 nlohmann::ordered_json to_json(const StepTimingReport& report);
 

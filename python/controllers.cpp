@@ -46,18 +46,27 @@ ControllerSpec spec_with(const std::string& text, std::optional<std::string> lab
 }  // namespace
 
 void bind_controllers(py::module_& module) {
-  py::class_<Reference>(module, "Reference", "What a controller tracks at one sample: position (NED, m) and its integral (m s)")
-      .def(py::init([](py::handle position, py::handle integral) {
+  py::class_<Reference>(module, "Reference",
+                        "What a controller tracks at one sample: position (NED, m), its integral (m s), and the "
+                        "commanded velocity (m/s) and acceleration (m/s²), the position's exact derivatives")
+      .def(py::init([](py::handle position, py::handle integral, py::handle velocity, py::handle acceleration) {
              Reference reference;
              reference.position = VectorArgument(position, "Reference: position", 3).vector();
              if (!integral.is_none()) reference.integral = VectorArgument(integral, "Reference: integral", 3).vector();
+             if (!velocity.is_none()) reference.velocity = VectorArgument(velocity, "Reference: velocity", 3).vector();
+             if (!acceleration.is_none())
+               reference.acceleration = VectorArgument(acceleration, "Reference: acceleration", 3).vector();
              return reference;
            }),
-           py::arg("position"), py::arg("integral") = py::none())
+           py::arg("position"), py::arg("integral") = py::none(), py::arg("velocity") = py::none(),
+           py::arg("acceleration") = py::none())
       .def_readwrite("position", &Reference::position)
       .def_readwrite("integral", &Reference::integral)
+      .def_readwrite("velocity", &Reference::velocity)
+      .def_readwrite("acceleration", &Reference::acceleration)
       .def("__repr__", [](const Reference& r) {
-        return "Reference(position=" + py::repr(py::cast(r.position)).cast<std::string>() + ")";
+        return "Reference(position=" + py::repr(py::cast(r.position)).cast<std::string>() +
+               ", velocity=" + py::repr(py::cast(r.velocity)).cast<std::string>() + ")";
       });
 
   py::class_<Controller, PythonController, std::shared_ptr<Controller>>(

@@ -92,13 +92,19 @@ Motion on_faster_clock(const Motion& motion, double s) {
 }  // namespace
 
 Eigen::Vector3d Hold::position(const Eigen::Vector3d& start, double, double) const { return start; }
+Derivatives Hold::derivatives(const Eigen::Vector3d&, double, double) const { return {}; }
 
 Eigen::Vector3d Ramp::position(const Eigen::Vector3d& start, double tau, double duration) const {
   const double fraction = std::clamp(tau / duration, 0.0, 1.0);
   return start + fraction * (to - start);
 }
 
+Derivatives Ramp::derivatives(const Eigen::Vector3d& start, double, double duration) const {
+  return {(to - start) / duration, Eigen::Vector3d::Zero()};
+}
+
 Eigen::Vector3d Step::position(const Eigen::Vector3d&, double, double) const { return to; }
+Derivatives Step::derivatives(const Eigen::Vector3d&, double, double) const { return {}; }
 
 Eigen::Vector3d Blend::position(const Eigen::Vector3d& start, double tau, double duration) const {
   const double sigma = std::clamp(tau / duration, 0.0, 1.0);
@@ -106,18 +112,44 @@ Eigen::Vector3d Blend::position(const Eigen::Vector3d& start, double tau, double
   return start + s * (to - start);
 }
 
+Derivatives Blend::derivatives(const Eigen::Vector3d& start, double tau, double duration) const {
+  const double sigma = std::clamp(tau / duration, 0.0, 1.0);
+  // s'(σ) = 30σ² − 60σ³ + 30σ⁴, s''(σ) = 60σ − 180σ² + 120σ³, and dσ/dt = 1/duration.
+  const double rate = 30.0 * sigma * sigma * (1.0 + sigma * (-2.0 + sigma));
+  const double curvature = 60.0 * sigma * (1.0 + sigma * (-3.0 + 2.0 * sigma));
+  return {rate / duration * (to - start), curvature / (duration * duration) * (to - start)};
+}
+
 Eigen::Vector3d Accelerate::position(const Eigen::Vector3d& start, double tau, double duration) const {
   const double t = std::clamp(tau, 0.0, duration);
   return start + (start_speed * t + (end_speed - start_speed) * t * t / (2.0 * duration)) * direction;
+}
+
+Derivatives Accelerate::derivatives(const Eigen::Vector3d&, double tau, double duration) const {
+  const double t = std::clamp(tau, 0.0, duration);
+  return {(start_speed + (end_speed - start_speed) * t / duration) * direction,
+          (end_speed - start_speed) / duration * direction};
 }
 
 Eigen::Vector3d Sinusoid::position(const Eigen::Vector3d& start, double tau, double) const {
   return start + std::sin(kTwoPi * tau / period) * amplitude;
 }
 
+Derivatives Sinusoid::derivatives(const Eigen::Vector3d&, double tau, double) const {
+  const double omega = kTwoPi / period, angle = omega * tau;
+  return {omega * std::cos(angle) * amplitude, -omega * omega * std::sin(angle) * amplitude};
+}
+
 Eigen::Vector3d FigureEight::position(const Eigen::Vector3d& start, double tau, double) const {
   const double angle = kTwoPi * tau / period;
   return start + Eigen::Vector3d(amplitude_x * std::sin(angle), -amplitude_y * std::sin(2.0 * angle), 0.0);
+}
+
+Derivatives FigureEight::derivatives(const Eigen::Vector3d&, double tau, double) const {
+  const double omega = kTwoPi / period, angle = omega * tau;
+  return {omega * Eigen::Vector3d(amplitude_x * std::cos(angle), -2.0 * amplitude_y * std::cos(2.0 * angle), 0.0),
+          omega * omega *
+              Eigen::Vector3d(-amplitude_x * std::sin(angle), 4.0 * amplitude_y * std::sin(2.0 * angle), 0.0)};
 }
 
 Eigen::Vector3d Circle::position(const Eigen::Vector3d& start, double tau, double) const {
@@ -126,6 +158,16 @@ Eigen::Vector3d Circle::position(const Eigen::Vector3d& start, double tau, doubl
   // Altitude h = h0 − (Δh/2)(1 − cos ωτ), so z = −h rises by the same amount.
   const double down = 0.5 * descent * (1.0 - std::cos(angle));
   return start + Eigen::Vector3d(radius * std::sin(angle), lateral, down);
+}
+
+Derivatives Circle::derivatives(const Eigen::Vector3d&, double tau, double) const {
+  const double omega = kTwoPi / period, angle = omega * tau;
+  const double side = counterclockwise ? 1.0 : -1.0;
+  return {omega * Eigen::Vector3d(radius * std::cos(angle), side * radius * std::sin(angle),
+                                  0.5 * descent * std::sin(angle)),
+          omega * omega *
+              Eigen::Vector3d(-radius * std::sin(angle), side * radius * std::cos(angle),
+                              0.5 * descent * std::cos(angle))};
 }
 
 const char* motion_type(const Motion& motion) {
@@ -147,6 +189,11 @@ Eigen::Vector3d PhasedTrajectory::Phase::position(double t) const {
   return std::visit([&](const auto& m) { return m.position(start_position, tau, end_time - start_time); }, motion);
 }
 
+Derivatives PhasedTrajectory::Phase::derivatives(double t) const {
+  const double tau = std::clamp(t - start_time, 0.0, end_time - start_time);
+  return std::visit([&](const auto& m) { return m.derivatives(start_position, tau, end_time - start_time); }, motion);
+}
+
 void PhasedTrajectory::append(std::string name, double end_time, const Motion& motion) {
   const double start_time = this->end_time();
   if (!(end_time > start_time) || !std::isfinite(end_time))
@@ -166,13 +213,23 @@ PhasedTrajectory PhasedTrajectory::time_scaled(double speed_scale) const {
   return scaled;
 }
 
-Eigen::Vector3d PhasedTrajectory::position(double t) const {
-  if (phases_.empty()) return start_;
-  // The phase that contains t: the first whose end lies beyond t (a boundary belongs to the later
-  // phase, so a step takes effect at its start time); past the end, the last phase.
+const PhasedTrajectory::Phase* PhasedTrajectory::phase_at(double t) const {
+  // The first phase whose end lies beyond t: a boundary belongs to the later phase, so a step
+  // takes effect at its start time.
   const auto it = std::upper_bound(phases_.begin(), phases_.end(), t,
                                    [](double time, const Phase& phase) { return time < phase.end_time; });
-  return it == phases_.end() ? phases_.back().end_position() : it->position(t);
+  return it == phases_.end() ? nullptr : &*it;
+}
+
+Eigen::Vector3d PhasedTrajectory::position(double t) const {
+  if (phases_.empty()) return start_;
+  const Phase* phase = phase_at(t);
+  return phase ? phase->position(t) : phases_.back().end_position();
+}
+
+Derivatives PhasedTrajectory::derivatives(double t) const {
+  const Phase* phase = phase_at(t);
+  return phase && t >= 0.0 ? phase->derivatives(t) : Derivatives{};
 }
 
 }  // namespace thetad

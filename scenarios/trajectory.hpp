@@ -17,21 +17,30 @@ namespace thetad {
 // and the loader converts. A motion that starts at its start position (all but Step) keeps the
 // command continuous at the phase boundary; velocity jumps there are intended (spec §8.4).
 
+// The commanded velocity and acceleration of a motion (NED): its position's exact time derivatives.
+struct Derivatives {
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
+  Eigen::Vector3d acceleration = Eigen::Vector3d::Zero();
+};
+
 // Stays at the start position.
 struct Hold {
   Eigen::Vector3d position(const Eigen::Vector3d& start, double tau, double duration) const;
+  Derivatives derivatives(const Eigen::Vector3d& start, double tau, double duration) const;
 };
 
 // Straight line at constant speed from the start to `to`, reached at the end of the phase.
 struct Ramp {
   Eigen::Vector3d to = Eigen::Vector3d::Zero();
   Eigen::Vector3d position(const Eigen::Vector3d& start, double tau, double duration) const;
+  Derivatives derivatives(const Eigen::Vector3d& start, double tau, double duration) const;
 };
 
 // Jumps to `to` at the start of the phase and stays there: the only deliberate discontinuity.
 struct Step {
   Eigen::Vector3d to = Eigen::Vector3d::Zero();
   Eigen::Vector3d position(const Eigen::Vector3d& start, double tau, double duration) const;
+  Derivatives derivatives(const Eigen::Vector3d& start, double tau, double duration) const;
 };
 
 // Quintic blend from the start to `to` over the phase: s(σ) = 10σ³ − 15σ⁴ + 6σ⁵, σ = tau/duration,
@@ -39,6 +48,7 @@ struct Step {
 struct Blend {
   Eigen::Vector3d to = Eigen::Vector3d::Zero();
   Eigen::Vector3d position(const Eigen::Vector3d& start, double tau, double duration) const;
+  Derivatives derivatives(const Eigen::Vector3d& start, double tau, double duration) const;
 };
 
 // Along `direction` with the speed changing linearly from start_speed to end_speed over the phase
@@ -49,6 +59,7 @@ struct Accelerate {
   double start_speed = 0.0;                              // m/s
   double end_speed = 0.0;                                // m/s
   Eigen::Vector3d position(const Eigen::Vector3d& start, double tau, double duration) const;
+  Derivatives derivatives(const Eigen::Vector3d& start, double tau, double duration) const;
 };
 
 // start + amplitude · sin(2π tau / period), per axis: back at the start after whole periods.
@@ -56,6 +67,7 @@ struct Sinusoid {
   Eigen::Vector3d amplitude = Eigen::Vector3d::Zero();  // NED (m)
   double period = 1.0;                                  // s
   Eigen::Vector3d position(const Eigen::Vector3d& start, double tau, double duration) const;
+  Derivatives derivatives(const Eigen::Vector3d& start, double tau, double duration) const;
 };
 
 // The figure 8 of scenario I (spec §8.4): x = x0 + A_x sin(ωτ), y = y0 − A_y sin(2ωτ), ω = 2π/T8,
@@ -66,6 +78,7 @@ struct FigureEight {
   double amplitude_y = 4.0;  // A_y (m)
   double period = 50.0;      // T8 (s)
   Eigen::Vector3d position(const Eigen::Vector3d& start, double tau, double duration) const;
+  Derivatives derivatives(const Eigen::Vector3d& start, double tau, double duration) const;
 };
 
 // The circle of scenario II (spec §8.4): x = x0 + R sin(ωτ), y = y0 ± R(1 − cos ωτ), ω = 2π/T_c,
@@ -78,6 +91,7 @@ struct Circle {
   double descent = 2.0;    // Δh (m): lowest point Δh below the start altitude
   bool counterclockwise = true;
   Eigen::Vector3d position(const Eigen::Vector3d& start, double tau, double duration) const;
+  Derivatives derivatives(const Eigen::Vector3d& start, double tau, double duration) const;
 };
 
 using Motion = std::variant<Hold, Ramp, Step, Blend, Accelerate, Sinusoid, FigureEight, Circle>;
@@ -98,6 +112,7 @@ class PhasedTrajectory final : public ReferenceTrajectory {
     Motion motion;
 
     Eigen::Vector3d position(double t) const;
+    Derivatives derivatives(double t) const;
     Eigen::Vector3d end_position() const { return position(end_time); }
   };
 
@@ -109,6 +124,11 @@ class PhasedTrajectory final : public ReferenceTrajectory {
 
   // NED command; the hot path of the simulator: no allocation.
   Eigen::Vector3d position(double t) const override;
+  // Its derivatives, those of the phase that holds t (a boundary belongs to the later phase);
+  // zero before the start and from the last phase's end on, where the command holds still.
+  Eigen::Vector3d velocity(double t) const override { return derivatives(t).velocity; }
+  Eigen::Vector3d acceleration(double t) const override { return derivatives(t).acceleration; }
+  Derivatives derivatives(double t) const;
 
   const std::vector<Phase>& phases() const { return phases_; }
   const Eigen::Vector3d& start_position() const { return start_; }
@@ -123,6 +143,9 @@ class PhasedTrajectory final : public ReferenceTrajectory {
   PhasedTrajectory time_scaled(double speed_scale) const;
 
  private:
+  // The phase that holds t, or null past the end.
+  const Phase* phase_at(double t) const;
+
   Eigen::Vector3d start_;
   std::vector<Phase> phases_;
 };

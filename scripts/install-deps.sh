@@ -16,6 +16,7 @@ packages=(
   python3-dev pybind11-dev python3-numpy python3-pandas python3-pytest python3-statsmodels
   jupyter-nbconvert python3-nbformat python3-ipykernel
   libsqlite3-dev libopenmpi-dev openmpi-bin
+  strace
 )
 
 # Extra packages for one target only (make fuzz: Clang and its libFuzzer runtime).

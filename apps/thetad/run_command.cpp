@@ -43,8 +43,9 @@ void print_summary(const RunResult& result, const Flight& flight, const RunFiles
   std::string effort;
   for (std::size_t k = 0; k < s.inputs.size(); ++k) {
     char entry[96];
-    std::snprintf(entry, sizeof entry, "%s%s %.4g %s", k ? ", " : "", s.inputs[k].name.c_str(),
-                  s.command_rms[static_cast<Eigen::Index>(k)], s.inputs[k].unit.c_str());
+    std::snprintf(entry, sizeof entry, "%s%s %.4g%s%s", k ? ", " : "", s.inputs[k].name.c_str(),
+                  s.command_rms[static_cast<Eigen::Index>(k)], s.inputs[k].unit.empty() ? "" : " ",
+                  s.inputs[k].unit.c_str());
     effort += entry;
   }
   std::printf("RMS command: %s; cost J = %.6g over %lld controller samples.\n", effort.c_str(), s.cost,

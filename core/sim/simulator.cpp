@@ -140,7 +140,8 @@ RunResult simulate(ControlLaw& law, Disturbances& disturbances, const ReferenceT
     t = static_cast<double>(k) * period;
     if (progress && k % kProgressSamples == 0) progress(t);
     disturbances.sample(t, x, rng);
-    const Reference now{reference.position(t), reference_integral.value};
+    const Reference now{reference.position(t), reference_integral.value, reference.velocity(t),
+                        reference.acceleration(t)};
     disturbances.measure(x, now, measured);
 
     std::int64_t elapsed_ns = 0;

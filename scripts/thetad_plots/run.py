@@ -292,7 +292,7 @@ def draw_compute_time(runs):
     ax.set_xlabel("time t (s)")
     ax.set_ylabel(f"control() wall time ({unit})")
     ax.grid(True, which="minor", linewidth=0.2)
-    title(fig, runs, "compute_time", "Compute time per control step (median, 5–95 % band)")
+    title(fig, runs, "compute_time", "In-flight compute time per control step (median, 5–95 % band)")
     return fig
 
 
@@ -313,7 +313,7 @@ def draw_summary(runs):
     hatches = ["////" if r.diverged else None for r in runs.runs]
     cost = np.array([r.summary["cost"]["J"] for r in runs.runs], dtype=float)
     compute = np.array([1e-3 * r.summary.get("compute_time_ns", {}).get("median", 0.0) for r in runs.runs])
-    for ax, values, xlabel in ((axes[1], cost, "cost J, Eq. 32 (–)"), (axes[2], compute, "median compute time (µs)")):
+    for ax, values, xlabel in ((axes[1], cost, "cost J, Eq. 32 (–)"), (axes[2], compute, "in-flight median step time (µs)")):
         bars = ax.barh(y, values, color=colours, hatch=hatches, edgecolor="white", linewidth=0)
         ax.bar_label(bars, fmt="%.3g", padding=2, fontsize=6.5)
         positive = values[values > 0]

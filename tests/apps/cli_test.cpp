@@ -66,7 +66,8 @@ TEST_F(Cli, CompareFliesEachControllerAndPrintsTheTable) {
   ASSERT_EQ(output.status, 0) << output.err;
   EXPECT_THAT(output.out, HasSubstr("tiny (2 s, seed 3, all disturbances"));
   EXPECT_THAT(output.out, HasSubstr("controller"));
-  EXPECT_THAT(output.out, HasSubstr("RMS position error (m)"));
+  EXPECT_THAT(output.out, HasSubstr("RMS tracking error (m)"));
+  EXPECT_THAT(output.out, HasSubstr("3-D"));
   EXPECT_THAT(output.out, HasSubstr("\nlqr "));
   EXPECT_THAT(output.out, HasSubstr("\nexample-pid "));
   EXPECT_THAT(output.err, HasSubstr("[1/2] lqr:"));

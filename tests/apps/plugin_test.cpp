@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "core/registry.hpp"
 #include "tests/apps/run_thetad.hpp"
 #include "tests/scratch_directory.hpp"
 
@@ -95,12 +96,27 @@ TEST_F(Plugins, APluginPlantFliesThetaDAndSdreFromTheCommandLine) {
     const std::string last = csv.substr(csv.rfind('\n', csv.size() - 2) + 1);
     EXPECT_LT(std::abs(std::stod(last.substr(last.find(',') + 1))), 1e-3) << last;
   }
+  // The plant's runs replay, with the plug-in that has the plant.
+  const Output again = thetad(plugin + " run --replay " + path("plant/sdre.json"));
+  EXPECT_EQ(again.status, 0) << again.err;
+  EXPECT_THAT(again.out, HasSubstr("agrees with the recorded run"));
+  const Output without = thetad("run --replay " + path("plant/sdre.json"));
+  EXPECT_EQ(without.status, 1);
+  EXPECT_THAT(without.err, HasSubstr("the plant 'companion', which no loaded plug-in registers"));
   const Output bad = thetad(plugin + " run --plant companion --controller lqr --duration 1 --out " + path("plant"));
   EXPECT_EQ(bad.status, 1);
   EXPECT_THAT(bad.err, HasSubstr("lqr: flies only the X-Cell helicopter"));
   const Output unknown = thetad("run --plant nowhere --controller theta-d --duration 1 --out " + path("plant"));
   EXPECT_EQ(unknown.status, 1);
   EXPECT_THAT(unknown.err, HasSubstr("unknown plant 'nowhere'"));
+}
+
+TEST_F(Plugins, APluginBuiltAgainstAnotherInterfaceIsRefused) {
+  const Output output = thetad(std::string("--plugin ") + THETAD_OLD_INTERFACE_PLUGIN + " list");
+  EXPECT_EQ(output.status, 1);
+  EXPECT_THAT(output.err, HasSubstr("plant 'companion' was built against plug-in interface version 1; this thetad has "
+                                    "version " + std::to_string(thetad::kPluginInterfaceVersion) +
+                                    ": rebuild the plug-in against this thetad"));
 }
 
 TEST_F(Plugins, BadPluginsAreOneClearLine) {

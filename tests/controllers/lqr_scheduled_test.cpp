@@ -178,6 +178,8 @@ class StraightLine final : public ReferenceTrajectory {
  public:
   explicit StraightLine(const Eigen::Vector3d& velocity) : velocity_(velocity) {}
   Eigen::Vector3d position(double t) const override { return Eigen::Vector3d(0.0, 0.0, -3.5) + velocity_ * t; }
+  Eigen::Vector3d velocity(double) const override { return velocity_; }
+  Eigen::Vector3d acceleration(double) const override { return Eigen::Vector3d::Zero(); }
 
  private:
   Eigen::Vector3d velocity_;

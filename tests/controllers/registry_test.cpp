@@ -222,6 +222,30 @@ std::unique_ptr<Controller> make_proportional(const Settings& settings, const Co
   return std::make_unique<ProportionalController>(settings.number("gain", 1.0), context.plant.input_dim());
 }
 
+// A plug-in built against another interface version, an empty name or a taken one is refused, by
+// every registry alike: inside a plug-in's scope the refusal waits for the loader, outside it throws.
+TEST(Registry, RefusesOtherInterfaceVersionsEmptyAndTakenNames) {
+  Registry<int> registry("widget");
+  registry.add("a", "the first", 1, kPluginInterfaceVersion);
+  EXPECT_THAT([&] { registry.add("a", "again", 2, kPluginInterfaceVersion); },
+              ::testing::ThrowsMessage<Error>(HasSubstr("widget registry: the name 'a' is registered twice (built-in and built-in)")));
+  EXPECT_THAT([&] { registry.add("", "nameless", 3, kPluginInterfaceVersion); },
+              ::testing::ThrowsMessage<Error>(HasSubstr("widget registry: an empty name")));
+  {
+    const RegistrationOrigin plugin("plug-in /old/libold.so");
+    registry.add("b", "built against the first interface", 4, 1);
+    registry.add("a", "taken", 5, kPluginInterfaceVersion);
+  }
+  const std::vector<std::string> refused = registry.take_refusals();
+  ASSERT_EQ(refused.size(), 2u);
+  EXPECT_THAT(refused[0], HasSubstr("widget 'b' was built against plug-in interface version 1; this thetad has version " +
+                                    std::to_string(kPluginInterfaceVersion) + ": rebuild the plug-in"));
+  EXPECT_THAT(refused[1], HasSubstr("(built-in and plug-in /old/libold.so)"));
+  EXPECT_TRUE(registry.take_refusals().empty());
+  EXPECT_EQ(registry.names(), std::vector<std::string>{"a"});
+  EXPECT_THAT([&] { registry.entry("c"); }, ::testing::ThrowsMessage<Error>(HasSubstr("unknown widget 'c' (known: a)")));
+}
+
 // Last in this file: it adds controllers to the registry for good (well-behaved ones, should the
 // tests run in another order; named anew on each repetition).
 TEST(ControllerRegistry, ARegistrationRecordsTheOriginItWasMadeIn) {
@@ -234,16 +258,17 @@ TEST(ControllerRegistry, ARegistrationRecordsTheOriginItWasMadeIn) {
   static int repetition = 0;
   const std::string run = std::to_string(++repetition);
   {
-    const ControllerRegistry::OriginScope outer("plugin /path/to/libouter.so");
-    registry.add("origin-outer-" + run, "registered in a scope", make_proportional);
+    const RegistrationOrigin outer("plugin /path/to/libouter.so");
+    registry.add("origin-outer-" + run, "registered in a scope", make_proportional, kPluginInterfaceVersion);
     {
-      const ControllerRegistry::OriginScope inner("plugin /path/to/libinner.so");
+      const RegistrationOrigin inner("plugin /path/to/libinner.so");
       const ControllerRegistration registration("origin-inner-" + run, "registered in a nested scope",
                                                 make_proportional);
     }
-    registry.add("origin-outer-again-" + run, "registered after the nested scope ended", make_proportional);
+    registry.add("origin-outer-again-" + run, "registered after the nested scope ended", make_proportional,
+                 kPluginInterfaceVersion);
   }
-  registry.add("origin-after-" + run, "registered after every scope ended", make_proportional);
+  registry.add("origin-after-" + run, "registered after every scope ended", make_proportional, kPluginInterfaceVersion);
   EXPECT_EQ(registry.origin("origin-outer-" + run), "plugin /path/to/libouter.so");
   EXPECT_EQ(registry.origin("origin-inner-" + run), "plugin /path/to/libinner.so");
   EXPECT_EQ(registry.origin("origin-outer-again-" + run), "plugin /path/to/libouter.so");

@@ -15,6 +15,7 @@
 #include "experiment/result_json.hpp"
 #include "experiment/run_files.hpp"
 #include "experiment/sha256.hpp"
+#include "tests/error_message.hpp"
 #include "tests/scratch_directory.hpp"
 
 namespace thetad {
@@ -294,16 +295,34 @@ TEST_F(FlightFiles, AReplayFliesTheSameOffsetAndSpeedScaledRun) {
   EXPECT_EQ(again.result.provenance.speed_scale, 1.5);
 }
 
-TEST_F(FlightFiles, AReplayRefusesAScenarioThatChanged) {
+// The result records the scenario's text: editing (or deleting) the file after the run changes
+// nothing of its replay.
+TEST_F(FlightFiles, AReplayFliesTheRecordedScenarioWhateverBecameOfItsFile) {
   fs::copy_file(kScenario, dir_ / "scenario.yaml");
   const RunFiles files = write_run_files(fly(Flight((dir_ / "scenario.yaml").string(), seconds(0.1)), "lqr"), dir_);
   std::ofstream(dir_ / "scenario.yaml", std::ios::app) << "# edited\n";
-  try {
-    replay(files.json);
-    FAIL() << "no error";
-  } catch (const Error& error) {
-    EXPECT_THAT(error.what(), HasSubstr("has changed since the run"));
-  }
+  const Replay edited = replay(files.json);
+  EXPECT_TRUE(edited.differences.empty()) << edited.differences.front();
+  fs::remove(dir_ / "scenario.yaml");
+  EXPECT_TRUE(replay(files.json).differences.empty());
+  EXPECT_EQ(nlohmann::json::parse(read(files.json))["format_version"], kRunFormatVersion);
+}
+
+// A result of format_version 1 (before the scenario text was recorded) replays from its file, which
+// must still be the bytes it flew; a result of a newer thetad is refused.
+TEST_F(FlightFiles, OlderResultsReplayFromTheirFileAndNewerOnesAreRefused) {
+  fs::copy_file(kScenario, dir_ / "scenario.yaml");
+  const RunFiles files = write_run_files(fly(Flight((dir_ / "scenario.yaml").string(), seconds(0.1)), "lqr"), dir_);
+  nlohmann::ordered_json result = nlohmann::ordered_json::parse(read(files.json));
+  result.erase("format_version");
+  result["provenance"]["scenario"].erase("text");
+  std::ofstream(dir_ / "old.json") << result.dump(2);
+  EXPECT_TRUE(replay(dir_ / "old.json").differences.empty());
+  std::ofstream(dir_ / "scenario.yaml", std::ios::app) << "# edited\n";
+  EXPECT_THAT(testing::error_message([&] { replay(dir_ / "old.json"); }), HasSubstr("has changed since the run"));
+  result["format_version"] = kRunFormatVersion + 1;
+  std::ofstream(dir_ / "newer.json") << result.dump(2);
+  EXPECT_THAT(testing::error_message([&] { replay(dir_ / "newer.json"); }), HasSubstr("written by a newer thetad"));
 }
 
 }  // namespace

@@ -1,6 +1,8 @@
 // A user's plant (not the helicopter) flown by θ–D and the SDRE through the experiment library.
 #include <cmath>
 #include <memory>
+#include <optional>
+#include <vector>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -62,6 +64,21 @@ TEST(PlantFlight, ThetaDAndSdreRegulateANonlinearPlant) {
     EXPECT_LT(flown->log.row(flown->log.rows() - 1).segment(1, 2).norm(), 1e-3);
   }
   EXPECT_NEAR(theta_d.summary.cost, sdre.summary.cost, 0.05 * sdre.summary.cost);
+}
+
+// The shipped RTAC/TORA benchmark, from the registry: θ–D and the SDRE bring the displaced cart
+// to rest through the rotor alone (its design weights Q = I, R = 1).
+TEST(PlantFlight, ThetaDAndSdreRegulateTheToraBenchmark) {
+  for (const char* spec : {"theta-d", "sdre"}) {
+    const Flight flight = Flight::of_plant("tora", std::nullopt, seconds(30.0));
+    PreparedController prepared = flight.prepare(parse_controller_spec(spec));
+    const RunResult flown = flight.fly(prepared);
+    ASSERT_EQ(flown.summary.status, sim::RunStatus::completed) << spec << ": " << flown.summary.reason;
+    const auto last = flown.log.row(flown.log.rows() - 1);
+    EXPECT_LT(std::abs(last[1]), 0.05) << spec;  // the cart's position, from 1
+    EXPECT_EQ(flown.log.columns[1].header(), "xi");
+    EXPECT_EQ(flown.provenance.initial_state, (std::vector<double>{1.0, 0.0, 0.0, 0.0}));
+  }
 }
 
 // The log and the summary take the plant's shape: its states and inputs, no tracked states.
