@@ -19,16 +19,22 @@ endif
 BENCH_DIR ?= build-bench
 OUT ?= out
 
-.PHONY: all deps build test sanitize demo bench fuzz clean
+.PHONY: all deps configure build program test sanitize demo bench fuzz clean
 
 all: build
 
 deps:
 	@bash scripts/install-deps.sh
 
-build: deps
+configure: deps
 	cmake -S . -B $(BUILD_DIR) $(CMAKE_FLAGS)
+
+build: configure
 	cmake --build $(BUILD_DIR) -j $(JOBS)
+
+# The thetad program alone (what the demo runs): no test, benchmark or Python module.
+program: configure
+	cmake --build $(BUILD_DIR) -j $(JOBS) --target thetad
 
 test: build
 	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
@@ -43,7 +49,7 @@ sanitize: deps
 # The quick diagnostics first, then scenario I with every disturbance of the paper (seed 1), logging
 # every 20th sample (the figures draw ~1500 windows; the summaries use every sample), then
 # its figures (the paper's Figs. 2-9 with the controllers overlaid; see docs/reproduction.md).
-demo: build
+demo: program
 	$(BUILD_DIR)/apps/thetad demo --out $(OUT)
 	$(BUILD_DIR)/apps/thetad compare --scenario scenario-1 --controllers theta-d,sdre,lqr,lqr-scheduled --seed 1 --log-every 20 --out $(OUT)/scenario-1
 	$(BUILD_DIR)/apps/thetad plot --in $(OUT)/scenario-1 --out $(OUT)/scenario-1/figures

@@ -15,7 +15,8 @@ CLI::App* add_bench_command(CLI::App& app, BenchArguments& arguments) {
       "bench", "Per-step cost of controllers on states recorded along a scenario flight, outside the simulation "
                "loop, pinned to one core: median, p10, p90, p99, max, share of the 1 kHz budget");
   arguments.flight.scenario = "scenario-1";
-  add_flight_options(*bench, arguments.flight, false);
+  // It writes no run: no log, summary or timing switches (they would be accepted and ignored).
+  add_flight_options(*bench, arguments.flight, false, false);
   bench->get_option("--out")->description("JSON file for the figures (optional)");
   bench->add_option("--controllers", arguments.controllers,
                     "Comma-separated NAME, LABEL=NAME or LABEL=NAME:SETTINGS.yaml; the first flies the recording")

@@ -113,7 +113,7 @@ std::uint64_t parse_seed(const std::string& text, const std::string& option) {
   return *seed;
 }
 
-void add_flight_options(CLI::App& command, FlightOptions& options, bool scenario_required) {
+void add_flight_options(CLI::App& command, FlightOptions& options, bool scenario_required, bool writes_runs) {
   auto* scenario = command.add_option("--scenario", options.scenario,
                                       "Scenario file (YAML, see docs/scenarios.md) or the name of a shipped one "
                                       "(scenario-1, scenario-2, hover-step, hover-to-hover, fast-forward)");
@@ -136,15 +136,17 @@ void add_flight_options(CLI::App& command, FlightOptions& options, bool scenario
   command.add_option_function<double>(
       "--dt", [&options](double value) { options.controls.dt = value; },
       "Plant (RK4) step in s; must divide the controller period (1 ms)");
-  command.add_option_function<int>(
-      "--log-every", [&options](int value) { options.controls.log_every = value; },
-      "Log every N-th controller sample (default 1)");
-  command.add_flag_function(
-      "--summary-only", [&options](std::int64_t) { options.controls.summary_only = true; },
-      "Write no log (CSV), only the result JSON (complete summary)");
-  command.add_flag("--no-timing", options.no_timing,
-                   "Measure no wall-clock time (no compute-time column, host or start time): reruns with the same "
-                   "seed give byte-identical files");
+  if (writes_runs) {
+    command.add_option_function<int>(
+        "--log-every", [&options](int value) { options.controls.log_every = value; },
+        "Log every N-th controller sample (default 1)");
+    command.add_flag_function(
+        "--summary-only", [&options](std::int64_t) { options.controls.summary_only = true; },
+        "Write no log (CSV), only the result JSON (complete summary)");
+    command.add_flag("--no-timing", options.no_timing,
+                     "Measure no wall-clock time (no compute-time column, host or start time): reruns with the same "
+                     "seed give byte-identical files");
+  }
   command.add_flag("--quiet", options.quiet, "No progress display");
   command.add_option("--out", options.out, "Output directory (created; checked before anything flies)");
 }

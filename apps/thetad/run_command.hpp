@@ -32,9 +32,11 @@ struct FlightOptions {
 // 2^64 - 1 are CLI11 validation errors naming the option, not wraps.
 std::uint64_t parse_seed(const std::string& text, const std::string& option = "--seed");
 
-// Adds --scenario, --settings, --seed, --ideal, --duration, --dt, --log-every, --summary-only,
-// --no-timing, --quiet and --out to `command`.
-void add_flight_options(CLI::App& command, FlightOptions& options, bool scenario_required = true);
+// Adds --scenario, --settings, --seed, --ideal, --duration, --dt, --quiet and --out to `command`,
+// and, for a command that writes runs, --log-every, --summary-only and --no-timing.
+void add_flight_options(CLI::App& command, FlightOptions& options, bool scenario_required = true,
+                        bool writes_runs = true);
+
 // The run controls the options ask for.
 RunControls run_controls(const FlightOptions& options);
 

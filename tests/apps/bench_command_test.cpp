@@ -62,6 +62,15 @@ TEST_F(BenchCommand, TimesEachLabelledControllerOnRecordedStates) {
   EXPECT_EQ(j["provenance"]["scenario"]["name"], "scenario-1");
 }
 
+// It writes no run, so the switches of a run's files are refused, not accepted and ignored.
+TEST_F(BenchCommand, RefusesTheSwitchesOfARunsFiles) {
+  for (const char* option : {"--no-timing", "--summary-only", "--log-every 5"}) {
+    const Output output = thetad(std::string("bench --controllers lqr --duration 1 ") + option);
+    EXPECT_EQ(output.status, 1) << option;
+    EXPECT_THAT(output.err, HasSubstr("--")) << option;
+  }
+}
+
 TEST_F(BenchCommand, TooShortAFlightForTheSamplesIsAClearError) {
   const Output output = thetad("bench --duration 0.1 --controllers lqr --samples 1000");
   EXPECT_EQ(output.status, 1);
