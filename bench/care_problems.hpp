@@ -82,7 +82,7 @@ inline double relative_residual(const CareProblem& p, const Eigen::MatrixXd& P) 
   return (p.A.transpose() * P + P * p.A - P * G * P + p.Q).norm() / std::max(1.0, p.Q.norm());
 }
 
-// The helicopter at rest (paper-spec §10.3: A0, g0) with the paper's weights (§7.2).
+// The helicopter at rest (docs/model.md §13: A0, g0) with the paper's weights (§7.2).
 inline CareProblem paper_care_problem() {
   CareProblem p{"paper_n18_m5", Eigen::MatrixXd::Zero(18, 18), Eigen::MatrixXd::Zero(18, 5), {}, {}};
   const auto a = [&](int i, int j, double v) { p.A(i - 1, j - 1) = v; };

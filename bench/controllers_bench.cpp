@@ -4,7 +4,7 @@
 // is timed on one cached state. Every controller in the registry runs by its name with its
 // defaults, as `thetad run` flies it (a controller registered later is timed without an edit
 // here). Besides, built directly: θ–D with N = 1 … 4 terms and 1 (one-step lag) or 3 (exact Ω,
-// spec §7.6) fixed-point passes; SDRE cold (solve_care: the matrix sign function, Schur as
+// docs/model.md §6.2) fixed-point passes; SDRE cold (solve_care: the matrix sign function, Schur as
 // fallback) and warm (Newton–Kleinman from the last P) with the same passes; θ–D's 3-term step on
 // dynamic-size types; the plant's F, B; and, as a reference for the Riccati solver, the SDRE step
 // with SLICOT's SB02MD in place of solve_care.
@@ -49,7 +49,7 @@ using Sample = thetad::sim::ControlSample;
 
 struct Recording {
   thetad::Scenario scenario;
-  heli::Helicopter model;  // the controllers' nominal model (spec A-27)
+  heli::Helicopter model;  // the controllers' nominal model (docs/model.md §11)
   std::vector<Sample> samples;
 
   Recording()

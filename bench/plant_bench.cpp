@@ -1,5 +1,5 @@
 // The helicopter plant's hot path: one right-hand side, the SDC matrices, one RK4 step, and the
-// rotor-speed zero-finding (spec §2.7.2). Fixed-size buffers, preallocated outside the loops.
+// rotor-speed zero-finding (docs/model.md §4.2). Fixed-size buffers, preallocated outside the loops.
 #include <benchmark/benchmark.h>
 
 #include <Eigen/Core>

@@ -180,7 +180,7 @@ void bm_solve_lyapunov(benchmark::State& state, const Problem& p) {
 // The alternatives ConstantLyapunovSolver was chosen against, each with its precomputation
 // outside the loop and its buffers preallocated.
 
-// The paper's form (spec §5.6): vec(X) = −𝒜⁻¹ vec(W), 𝒜 = I ⊗ Ac' + Ac' ⊗ I, n² unknowns.
+// The paper's form (docs/model.md §8.1): vec(X) = −𝒜⁻¹ vec(W), 𝒜 = I ⊗ Ac' + Ac' ⊗ I, n² unknowns.
 void bm_alt_kronecker_inverse(benchmark::State& state, const Problem& p) {
   const Index n = p.Ac.rows();
   const MatrixXd I = MatrixXd::Identity(n, n);

@@ -7,7 +7,7 @@
 // Q and R (§7.2) as θ–D and the SDRE, but a gain fixed once, so it shows what their
 // state dependence buys away from hover.
 //
-// Why the trim and not xa(t0) as θ–D does (spec §7.1): xa(t0) is on the ground at rest, not an
+// Why the trim and not xa(t0) as θ–D does (docs/model.md §8.1): xa(t0) is on the ground at rest, not an
 // equilibrium (the tail-rotor force is unbalanced at φ = 0), so u* would be meaningless there; the
 // hover trim is the point the helicopter is asked to hold. The trim of this model does not depend
 // on altitude, so the hover trim at the initial state's altitude and heading is the hover trim at

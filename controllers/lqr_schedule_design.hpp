@@ -49,7 +49,7 @@ LqrScheduleGrid read_lqr_grid(const Settings& fields);
 struct LqrSchedulePoint {
   double speed = 0.0, course = 0.0, climb_rate = 0.0;
   // The rotor model the trim and linearization used: the model's own, or the governor where the
-  // thrust-inversion model (A4) has no trim (spec A-11).
+  // thrust-inversion model (A4) has no trim (docs/model.md §11 ).
   heli::ModelOptions::RotorSpeedModel rotor_speed_model = heli::ModelOptions::RotorSpeedModel::thrust_inversion;
   double rotor_speed = 0.0;  // Ω_mr at the trim (rad/s)
   double residual = 0.0;     // Trim::residual

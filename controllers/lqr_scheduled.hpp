@@ -46,7 +46,7 @@ class LqrScheduledController final : public Controller {
   using Input = Eigen::Matrix<double, heli::kInputDim, 1>;
 
   // The scheduling velocity is the reference's, low-passed with this time constant (s): the
-  // scenarios' commanded velocity jumps at phase boundaries (spec §8.4), and a jump of V*'s
+  // scenarios' commanded velocity jumps at phase boundaries (docs/model.md §10), and a jump of V*'s
   // velocity by 0.5 m/s in w at the end of the takeoff ramp commands −36 N of thrust through the
   // w gain (~230 N per m/s), which A4 has no rotor speed for. Longer is gentler and lags more:
   // 0.2 s keeps the smallest thrust of the paper runs above 17 N (10 N at 0.1 s) for ~13 % more

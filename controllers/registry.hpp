@@ -15,8 +15,8 @@
 namespace thetad {
 
 // What a controller is designed with: the plant it knows (for the helicopter the nominal
-// parameters, no wind: spec A-27), the design defaults its settings start from and the initial
-// state of the run (t0, xa(t0): spec §7.1). θ–D and SDRE need nothing but an SdcPlant; a
+// parameters, no wind: docs/model.md §11 ), the design defaults its settings start from and the initial
+// state of the run (t0, xa(t0): docs/model.md §8.1). θ–D and SDRE need nothing but an SdcPlant; a
 // controller that needs the helicopter's specifics asks helicopter_of().
 struct ControllerContext {
   const SdcPlant& plant;

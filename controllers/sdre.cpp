@@ -102,7 +102,7 @@ void SdreController::update_value_matrix(double t) {
 void SdreController::control(double t, const Eigen::Ref<const Eigen::VectorXd>& measured_state,
                              const Reference& reference, Eigen::Ref<Eigen::VectorXd> u) {
   model_->tracking_vector(measured_state, reference, v_);
-  // Spec §7.6: start from the previously applied input; without input dependence one pass is exact.
+  // docs/model.md §6.2: start from the previously applied input; without input dependence one pass is exact.
   const int passes = model_->sdc_depends_on_input() ? settings_.fixed_point_iterations : 1;
   guess_ = applied_;
   last_iterations_ = 0;
@@ -139,7 +139,7 @@ std::unique_ptr<Controller> make_sdre(const Settings& fields, const ControllerCo
   // Bounded: every pass is a Riccati solve within the 1 ms step; the fixed point settles in 2-3.
   settings.fixed_point_iterations = fields.integer("fixed_point_iterations", settings.fixed_point_iterations, 1, 100);
   // The context's design defaults: for the helicopter the paper's weights, and the fixed point
-  // starts from hover thrust at the first sample (spec §7.6).
+  // starts from hover thrust at the first sample (docs/model.md §6.2).
   const DesignDefaults& defaults = context.defaults;
   settings.Q = fields.diagonal_weight("Q", defaults.state_weights, Settings::Weight::positive_semidefinite);
   settings.R = fields.diagonal_weight("R", defaults.input_weights, Settings::Weight::positive_definite);

@@ -1,11 +1,11 @@
 #pragma once
 
-// The state-dependent Riccati equation controller (spec §7.5 step 1, Eq. 37): at every sample,
+// The state-dependent Riccati equation controller (docs/model.md §8.2 step 1, Eq. 37): at every sample,
 // P(x) solves P F(x) + F(x)ᵀ P − P B(x) R⁻¹ B(x)ᵀ P + Q = 0 and u = −R⁻¹ B(x)ᵀ P(x) v, with
 // v = model.tracking_vector(measured, reference) (V_track of Eq. 36 for the helicopter).
 //
 // Generic over any SdcPlant. When the plant's F and B depend on the input (the helicopter's rotor
-// speed follows T_mr), u is the fixed point of u -> F(x; u), B(x; u) -> u' of spec §7.6, started
+// speed follows T_mr), u is the fixed point of u -> F(x; u), B(x; u) -> u' of docs/model.md §6.2, started
 // from the previously applied input: every pass solves one CARE.
 //
 // A step allocates nothing in either mode: Newton–Kleinman works in a NewtonKleinmanSolver and the
@@ -37,7 +37,7 @@ struct SdreSettings {
   // Q n×n symmetric positive semi-definite, R m×m symmetric positive definite (Eq. 37).
   Eigen::MatrixXd Q;
   Eigen::MatrixXd R;
-  // The first guess of the fixed point at the first sample (the helicopter: T_mr = m g, spec §7.6).
+  // The first guess of the fixed point at the first sample (the helicopter: T_mr = m g, docs/model.md §6.2).
   // Empty: zeros.
   Eigen::VectorXd initial_input;
   // Passes of the fixed point for input-dependent SDC plants; 1 is the one-step-lag variant.
@@ -68,7 +68,7 @@ class SdreController final : public Controller {
 
   // P(x) of Eq. (37) with F(x; input), B(x; input), by a cold solve (independent of this
   // controller's history); t is unused (the SDRE is time-invariant) and kept for the same call
-  // as ThetaDController::value_matrix, which the tuning compares it with (spec §7.5).
+  // as ThetaDController::value_matrix, which the tuning compares it with (docs/model.md §8.2).
   // Throws thetad::Error when the CARE has no stabilizing solution at x.
   Eigen::MatrixXd value_matrix(const Eigen::VectorXd& x, const Eigen::VectorXd& input, double t) const;
 

@@ -26,7 +26,7 @@ void require_shape(const char* what, const Eigen::MatrixXd& M, Eigen::Index rows
   if (!M.allFinite()) throw Error(std::string("theta-d: ") + what + " has non-finite entries");
 }
 
-// Empty means "all 1" (spec §7.4); otherwise one entry per term beyond T0.
+// Empty means "all 1" (docs/model.md §8.1); otherwise one entry per term beyond T0.
 Eigen::VectorXd series_parameter(const char* what, const Eigen::VectorXd& given, int count) {
   if (given.size() == 0) return Eigen::VectorXd::Ones(count);
   if (given.size() != count)
@@ -38,9 +38,9 @@ Eigen::VectorXd series_parameter(const char* what, const Eigen::VectorXd& given,
 
 // The design defaults come with the context, not from the controller: for the helicopter the
 // paper's weights (Eqs. 33–34) and u0 = [m g, 0, 0, 0, 0], the rotor at hover thrust on the
-// ground (spec §7.1).
+// ground (docs/model.md §8.1).
 const ControllerRegistration registration(
-    "theta-d", "theta-D series T0 + ... + T_{N-1} around the initial state (paper-spec §5, §7)",
+    "theta-d", "theta-D series T0 + ... + T_{N-1} around the initial state (docs/model.md §7, §8.1)",
     [](const Settings& settings, const ControllerContext& context) -> std::unique_ptr<Controller> {
       settings.allow_only({theta_d_keys::terms, theta_d_keys::k, theta_d_keys::l, "fixed_point_iterations",
                            "fixed_point_tolerance", "Q", "R"});
@@ -130,7 +130,7 @@ void ThetaDController::reset(const Eigen::VectorXd& x0, double t0) {
   const Eigen::Index n = model_->state_dim();
   if (x0.size() != n) throw Error("theta-d: initial state has " + std::to_string(x0.size()) + " entries, the model " + std::to_string(n));
   t0_ = t0;
-  // Eq. (31), spec §7.1: the system frozen at xa(t0), once.
+  // Eq. (31), docs/model.md §8.1: the system frozen at xa(t0), once.
   A0_.resize(n, n);
   g0_.resize(n, model_->input_dim());
   model_->sdc(x0, settings_.initial_input, A0_, g0_);
@@ -263,7 +263,7 @@ void ThetaDController::prepare_projections() {
         }
     projection_offsets_.push_back(static_cast<Eigen::Index>(projection_support_.size()));
   }
-  // The projections pay when the fixed point may take several passes (spec §7.6) and their set-up
+  // The projections pay when the fixed point may take several passes (docs/model.md §6.2) and their set-up
   // per step, n per entry of the supports, and their dense products per pass cost less than the
   // partial solves they replace. Those multiply only last_term_'s stored entries but cost about
   // 1.4 times as much per entry as a dense product (a gather and a call per block; measured on

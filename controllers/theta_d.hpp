@@ -1,6 +1,6 @@
 #pragma once
 
-// The θ–D controller (paper-spec §5, §7): a series approximation Σ_{i<N} T_i(x, t) of the SDRE
+// The θ–D controller (docs/model.md §7, §8.1): a series approximation Σ_{i<N} T_i(x, t) of the SDRE
 // solution P(x) around the frozen system (A0, g0) = (F, B) at the initial state. T0 solves one
 // CARE at reset; every further term solves a Lyapunov equation with the same constant operator
 // L(T) = T Ac0 + Ac0ᵀ T, so one control step is a few products and N − 1 packed linear maps;
@@ -34,20 +34,20 @@ inline constexpr const char* l = "l";
 }  // namespace theta_d_keys
 
 struct ThetaDSettings {
-  // N: the series T0 + T1 + … + T_{N−1} (spec §5.8: the paper uses N = 3). N ≥ 1.
+  // N: the series T0 + T1 + … + T_{N−1} (docs/model.md §8.1: the paper uses N = 3). N ≥ 1.
   int terms = 3;
   // k_i, l_i of e_i(t) = 1 − k_i exp(−l_i (t − t0)) for i = 1 … N−1 (Eq. 25). Empty: all 1
-  // (spec §7.4). k = 0 gives e_i ≡ 1, the plain series.
+  // (docs/model.md §8.1). k = 0 gives e_i ≡ 1, the plain series.
   Eigen::VectorXd k;
   Eigen::VectorXd l;
   // Weights of Eq. (14): Q n×n symmetric positive semi-definite, R m×m symmetric positive definite.
   Eigen::MatrixXd Q;
   Eigen::MatrixXd R;
   // u0, the input at which the initial SDC F(x0; u0), B(x0; u0) is evaluated, and the first guess
-  // of the fixed point (spec §7.1, §7.6). Empty: zeros.
+  // of the fixed point (docs/model.md §8.1, §6.2). Empty: zeros.
   Eigen::VectorXd initial_input;
   // Passes of the fixed point u -> F(x; u), B(x; u) -> u' for plants whose SDC depends on the
-  // input (spec §7.6); 1 is the one-step-lag variant. Stops early when max|Δu| < tolerance.
+  // input (docs/model.md §6.2); 1 is the one-step-lag variant. Stops early when max|Δu| < tolerance.
   int fixed_point_iterations = 3;
   double fixed_point_tolerance = 1e-6;
   // Run the step on fixed-size Eigen types when the plant has the paper helicopter's dimensions
@@ -65,10 +65,10 @@ class ThetaDController final : public Controller {
   std::string name() const override { return "theta-d"; }
   std::unique_ptr<Controller> clone() const override;
 
-  // Offline part of spec §5.10: A0, g0 at (x0; u0), T0 from (22a), Ac0 and its Lyapunov solver.
+  // Offline part of docs/model.md §8.1: A0, g0 at (x0; u0), T0 from (22a), Ac0 and its Lyapunov solver.
   // Throws thetad::Error when the CARE has no stabilizing solution at x0.
   void reset(const Eigen::VectorXd& x0, double t0) override;
-  // Eq. (35) with the fixed point of spec §7.6. Allocates nothing.
+  // Eq. (35) with the fixed point of docs/model.md §6.2. Allocates nothing.
   void control(double t, const Eigen::Ref<const Eigen::VectorXd>& measured_state, const Reference& reference,
                Eigen::Ref<Eigen::VectorXd> u) override;
 
@@ -76,7 +76,7 @@ class ThetaDController final : public Controller {
   // by the same code as one pass of control(). terms() then holds the individual T_i.
   Eigen::MatrixXd value_matrix(const Eigen::VectorXd& x, const Eigen::VectorXd& input, double t);
 
-  // The pieces of Σ_{i<N} T_i(x, ·) with F(x; input), B(x; input) (spec §7.5): value_matrix(x,
+  // The pieces of Σ_{i<N} T_i(x, ·) with F(x; input), B(x; input) (docs/model.md §8.1): value_matrix(x,
   // input, t) equals series_expansion(x, input).evaluate(e(t)) with e_i = perturbation_factor(k_i,
   // l_i, t − start_time()), for any k, l. A cold path for the tuner: it allocates and solves one
   // Lyapunov equation per piece. Not thread-safe per object (the solver's buffers): one copy per thread.
@@ -106,7 +106,7 @@ class ThetaDController final : public Controller {
   enum class LastTerm { full, input_rows, input_row_products };
   // The step is one implementation compiled twice: for N × M known at compile time (the
   // helicopter's 18 × 5, on fixed-size views of the buffers below) and for Eigen::Dynamic.
-  // One pass of spec §5.10 steps 1–2 at (x; input), time t: fills F_, B_, T_[1 … N−2] and the
+  // One pass of docs/model.md §8.1 steps 1–2 at (x; input), time t: fills F_, B_, T_[1 … N−2] and the
   // last term as `wanted` asks if B(x) has no nonzero outside the input rows (else in full).
   // Returns the form it took. later_pass: a further fixed-point pass of one control(), at the x
   // and t of the last call (T1 is then updated from the coefficients that moved, see first_term_).
@@ -129,7 +129,7 @@ class ThetaDController final : public Controller {
   // W_i of term i ≥ 1 from T_0 … T_{i−1}, packed into packed_right_ (through M_).
   template <int N, int M>
   void form_right_side(std::size_t i);
-  // The fixed-point passes of control() on v_, from guess_ (spec §7.6).
+  // The fixed-point passes of control() on v_, from guess_ (docs/model.md §6.2).
   template <int N, int M>
   void run_passes(double t, const Eigen::Ref<const Eigen::VectorXd>& x);
 
@@ -226,10 +226,10 @@ class ThetaDController final : public Controller {
   // the last pass formed T1 this way.
   Eigen::VectorXd first_term_, first_term_coefficients_;
   bool first_term_current_ = false;
-  std::vector<Eigen::MatrixXd> T_;  // T_i (θ = 1, spec §5.7), already scaled by e_i
+  std::vector<Eigen::MatrixXd> T_;  // T_i (θ = 1, docs/model.md §8.1), already scaled by e_i
   std::vector<Eigen::MatrixXd> products_;  // [Y_i, Z_i] = T_i [g0 L⁻ᵀ, g̃ L⁻ᵀ] (n × 2m)
   std::vector<Eigen::MatrixXd> pairs_;     // C_i = Y_i + Z_{i−1}, i ≥ 1 (see form_right_side)
-  Eigen::MatrixXd M_;                      // W_i = M + Mᵀ (spec §5.4)
+  Eigen::MatrixXd M_;                      // W_i = M + Mᵀ (docs/model.md §8.1)
   Eigen::MatrixXd left_, right_;           // the low-rank sums of M as one product left · rightᵀ
   Eigen::VectorXd packed_right_, packed_term_;
   Eigen::VectorXd v_, T0_v_, value_gradient_, Bt_gradient_, guess_, update_, applied_;

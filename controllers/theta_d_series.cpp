@@ -31,7 +31,7 @@ SeriesExpansion ThetaDController::series_expansion(const Eigen::VectorXd& x, con
   if (x.size() != n || input.size() != B_.cols())
     throw Error("theta-d: series_expansion needs a state of " + std::to_string(n) + " and an input of " +
                 std::to_string(B_.cols()) + " entries");
-  // The recursion of spec §5.4 on polynomials in e: each T_i maps a monomial (its exponent
+  // The recursion of docs/model.md §8.1 on polynomials in e: each T_i maps a monomial (its exponent
   // vector; std::map keeps the order, hence the pieces, deterministic) to its matrix.
   using Polynomial = std::map<std::vector<int>, Eigen::MatrixXd>;
   const SdcPlant::Coefficients sdc = model_->sdc(x, input);
@@ -57,7 +57,7 @@ SeriesExpansion ThetaDController::series_expansion(const Eigen::VectorXd& x, con
       }
   };
   for (std::size_t i = 1; i < terms; ++i) {
-    // W_i of spec §5.4 with the already scaled T_1 … T_{i−1}.
+    // W_i of docs/model.md §8.1 with the already scaled T_1 … T_{i−1}.
     Polynomial W;
     for (const auto& [p, C] : T[i - 1]) {
       Eigen::MatrixXd& w = term_of(W, p);

@@ -1,6 +1,6 @@
 #pragma once
 
-// The θ–D series as a polynomial in its perturbation factors (spec §7.5), for the tuner: ΣT_i(x, t)
+// The θ–D series as a polynomial in its perturbation factors (docs/model.md §8.1), for the tuner: ΣT_i(x, t)
 // is Σ_j (Π_i e_i(t)^powers[j][i]) pieces[j] with pieces that depend on the state alone, so one
 // expansion per state gives ΣT for any k, l and t at the cost of a few additions.
 // ThetaDController::series_expansion() computes it (theta_d_series.cpp); theta_d.hpp has the
@@ -16,7 +16,7 @@ namespace thetad {
 // e_i(t) = 1 − k_i exp(−l_i (t − t0)) of Eq. (25), at elapsed = t − t0.
 double perturbation_factor(double k, double l, double elapsed);
 
-// ΣT_i(x, t) as a polynomial in e_1(t) … e_{N−1}(t) (spec §7.5). T_i = e_i L⁻¹(W_i) and W_i is
+// ΣT_i(x, t) as a polynomial in e_1(t) … e_{N−1}(t) (docs/model.md §8.1). T_i = e_i L⁻¹(W_i) and W_i is
 // linear and bilinear in T_0 … T_{i−1}, so the sum is Σ_j (Π_i e_i^powers[j][i]) pieces[j] with
 // pieces that depend on the state alone: computed once per state, ΣT for any k, l and t costs a
 // few additions and no Lyapunov solve (the tuner's cheap exact evaluation). With N = 3 the pieces

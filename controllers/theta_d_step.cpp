@@ -95,7 +95,7 @@ ThetaDController::Deviation ThetaDController::gather_deviation(const Eigen::Ref<
   model_->sdc_varying(x, input, F_, B_);
   const auto F = view<N, N>(F_);
   const auto B = view<N, M>(B_);
-  // Eq. (31) with θ = 1 (spec §5.7): Ã = F − A0 kept as its nonzero coefficients, g̃ = B − g0
+  // Eq. (31) with θ = 1 (docs/model.md §8.1): Ã = F − A0 kept as its nonzero coefficients, g̃ = B − g0
   // scaled by L⁻ᵀ. T1 = e1 · basis_ · c needs every nonzero of Ã and g̃ to have a slot: one
   // vectorised comparison of the entries without one, then c read from its entries alone.
   Deviation deviation{all_zero((F - view<N, N>(A0_)).cwiseProduct(view<N, N>(a_unseen_))) &&
@@ -161,7 +161,7 @@ void ThetaDController::form_products(std::size_t i) {
 template <int N, int M>
 void ThetaDController::form_right_side(std::size_t i) {
   const Eigen::Index n = F_.rows(), m = B_.cols(), unknowns = n * (n + 1) / 2;
-  // Eqs. (22b–d) for general i (spec §5.4), W_i = M + Mᵀ with
+  // Eqs. (22b–d) for general i (docs/model.md §8.1), W_i = M + Mᵀ with
   //   M = −T_{i−1} Ã + Σ_{j<i} T_j g0 R⁻¹ g̃ᵀ T_{i−1−j} + ½ Σ_{j≤i−2} T_j S2 T_{i−2−j} + ½ Σ_{1≤j<i} T_j G0 T_{i−j}:
   // the S1 sum is X + Xᵀ of its first half, the S2 and G0 sums are symmetric on their own.
   // S1, S2, G0 enter only through the rank-m factors Y_j = T_j g0 L⁻ᵀ and Z_j = T_j g̃ L⁻ᵀ.
@@ -279,7 +279,7 @@ void ThetaDController::control(double t, const Eigen::Ref<const Eigen::VectorXd>
                                const Reference& reference, Eigen::Ref<Eigen::VectorXd> u) {
   require_reset("control");
   model_->tracking_vector(measured_state, reference, v_);
-  // Spec §7.6: start from the input applied at the previous sample.
+  // docs/model.md §6.2: start from the input applied at the previous sample.
   guess_ = applied_;
   if (fixed_size_) run_passes<kFixedStates, kFixedInputs>(t, measured_state);
   else run_passes<Eigen::Dynamic, Eigen::Dynamic>(t, measured_state);

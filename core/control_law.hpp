@@ -9,7 +9,7 @@
 namespace thetad {
 
 // The position integrals of V_track (Eq. 36) are accumulated by one rule, on both sides of the
-// loop (spec §7.3 A-17, §8.4): left rectangles at the controller rate, starting at 0 at t0. At
+// loop (docs/model.md §7, §11, §10): left rectangles at the controller rate, starting at 0 at t0. At
 // controller sample k the value is sum_{j<k} position(t_j) * T_c; the sample's own position is
 // added after the control has been computed. The simulator uses it for the command integral and
 // for the measured-position integral it reports in the measured state; a controller that keeps
@@ -37,7 +37,7 @@ struct Reference {
 
 // A commanded position as a function of time. Only the position: the simulator integrates it with
 // the PositionIntegral rule at the controller rate, because the integral must be accumulated
-// exactly as the controller accumulates the measured position (spec §7.3, §8.4); a closed-form
+// exactly as the controller accumulates the measured position (docs/model.md §7, §10); a closed-form
 // integral from the trajectory would differ from that rule by O(T_c) and show up as a spurious
 // integral error that the integral gains (Q up to 1e6) act on.
 class ReferenceTrajectory {

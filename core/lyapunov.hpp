@@ -5,7 +5,7 @@
 // Two entry points, for two situations:
 //  - solve_lyapunov: a one-off equation with any A (Bartels–Stewart on the real Schur form).
 //  - ConstantLyapunovSolver: many equations that share one Hurwitz coefficient matrix, as the
-//    θ–D recursion does (paper-spec §5.4–§5.6: every T_i, i ≥ 1, solves L(T) = T Ac0 + Ac0' T
+//    θ–D recursion does (docs/model.md §8.1: every T_i, i ≥ 1, solves L(T) = T Ac0 + Ac0' T
 //    = e_i W_i with the same constant Ac0). Everything that depends on Ac alone is paid once at
 //    construction; a solve is then one dense matrix–vector product and allocates nothing.
 //    docs/performance.md has the measurements behind this choice.

@@ -42,18 +42,18 @@ using namespace heli;
 //   and the Euler rows vanish by construction; as constraints they would be identically
 //   satisfied, i.e. zero Jacobian rows, which makes the constraint Jacobian rank deficient.
 // - Objective delta_col^2: 8 equations in 9 unknowns leave one direction free, because delta_col
-//   only enters the flapping rows through u_a delta_col and v_a delta_col (spec §2.5), where it
+//   only enters the flapping rows through u_a delta_col and v_a delta_col (docs/model.md §3.5), where it
 //   duplicates the cyclic (A-2; in hover it has no effect at all). The controllers penalize
 //   delta_col by far the most (R = 1e7), so the trim they hold is the one with least collective:
 //   the minimum is delta_col = 0 wherever the remaining 8x8 system has a root, which is also how
-//   spec §10.2 defines the hover trim. No other regularization is needed: with delta_col fixed the
+//   docs/model.md §13 defines the hover trim. No other regularization is needed: with delta_col fixed the
 //   other 8 unknowns are determined (nonsingular Jacobian), so the minimizer is unique.
 enum Unknown : int { kUnkPhi, kUnkTheta, kUnkA1, kUnkB1, kUnkThrust, kUnkPed, kUnkCol, kUnkLon, kUnkLat };
 constexpr int kUnknowns = 9;
 constexpr std::array<int, 8> kEquilibriumRows = {kU, kV, kW, kP, kQ, kR, kA1, kB1};
 constexpr int kConstraints = static_cast<int>(kEquilibriumRows.size());
 
-// Keeps the attitude well away from the Euler singularity theta = +-pi/2 (spec §6.5) and the
+// Keeps the attitude well away from the Euler singularity theta = +-pi/2 (docs/model.md §3.4) and the
 // thrust positive, where A4 has a rotor speed.
 constexpr double kMaxAttitude = 1.2;        // rad
 constexpr double kMinThrustFraction = 1e-3;  // of m g

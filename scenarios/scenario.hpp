@@ -24,7 +24,7 @@ struct Scenario {
   std::string description;
   std::string source;  // the file it was read from ("" when parsed from text)
   double duration = 0.0;  // s; equals the end of the last phase
-  // The 18-state xa(t0); by default at rest on the ground, level, s = 1 (spec §7.1).
+  // The 18-state xa(t0); by default at rest on the ground, level, s = 1 (docs/model.md §8.1).
   Eigen::VectorXd initial_state;
   PhasedTrajectory trajectory;
   heli::ModelOptions model_options;

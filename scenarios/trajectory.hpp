@@ -10,12 +10,12 @@
 
 namespace thetad {
 
-// Trajectory primitives (spec §8.1: "combinations of ramps, sinusoidal waves, and step inputs in
+// Trajectory primitives (docs/model.md §10: "combinations of ramps, sinusoidal waves, and step inputs in
 // three directions"; §8.4). Each one is a motion relative to where its phase starts: it gets the
 // start position, the time since the phase began (tau) and the phase's duration, and returns the
 // commanded position. Positions are NED (z down, altitude h = -z); the scenario files speak of h
 // and the loader converts. A motion that starts at its start position (all but Step) keeps the
-// command continuous at the phase boundary; velocity jumps there are intended (spec §8.4).
+// command continuous at the phase boundary; velocity jumps there are intended (docs/model.md §10).
 
 // The commanded velocity and acceleration of a motion (NED): its position's exact time derivatives.
 struct Derivatives {
@@ -70,7 +70,7 @@ struct Sinusoid {
   Derivatives derivatives(const Eigen::Vector3d& start, double tau, double duration) const;
 };
 
-// The figure 8 of scenario I (spec §8.4): x = x0 + A_x sin(ωτ), y = y0 − A_y sin(2ωτ), ω = 2π/T8,
+// The figure 8 of scenario I (docs/model.md §10): x = x0 + A_x sin(ωτ), y = y0 − A_y sin(2ωτ), ω = 2π/T8,
 // at constant altitude. It crosses itself at the start point and moves first towards −y and +x;
 // speed at the crossing ω·sqrt(A_x² + 4A_y²), at the lobe ends 2ωA_y.
 struct FigureEight {
@@ -81,7 +81,7 @@ struct FigureEight {
   Derivatives derivatives(const Eigen::Vector3d& start, double tau, double duration) const;
 };
 
-// The circle of scenario II (spec §8.4): x = x0 + R sin(ωτ), y = y0 ± R(1 − cos ωτ), ω = 2π/T_c,
+// The circle of scenario II (docs/model.md §10): x = x0 + R sin(ωτ), y = y0 ± R(1 − cos ωτ), ω = 2π/T_c,
 // with the altitude dipping by `descent` at the half circle: h = h0 − (Δh/2)(1 − cos ωτ).
 // Counterclockwise (+) means the polar angle about the centre (x0, y0 + R) increases, i.e.
 // counterclockwise in an x-right / y-up plot: first motion +x, then +y. Speed Rω horizontally.

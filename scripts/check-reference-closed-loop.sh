@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Flies θ–D (k = l = 1, 3 terms, 1 kHz) through both paper scenarios in the ideal setting and
-# checks the max position errors against the independent reference of spec §10.5 (5 % or 1 mm,
+# checks the max position errors against the independent reference of docs/model.md §13 (5 % or 1 mm,
 # whichever is larger). A long study (about 15 s of wall time), not part of `make test`.
 #
 #   scripts/check-reference-closed-loop.sh [BUILD_DIR] [OUT_DIR]

@@ -1,6 +1,6 @@
 #pragma once
 
-// ΣT_i(x_k, t_k; k, l) at every sample of a recorded flight for any k, l, cheaply (spec §7.5).
+// ΣT_i(x_k, t_k; k, l) at every sample of a recorded flight for any k, l, cheaply (docs/model.md §8.1).
 //
 // Only e_i depends on (k, l), and ΣT_i is a polynomial in the e_i with state-dependent matrix
 // coefficients (ThetaDController::series_expansion). PackedSeries computes those coefficients once

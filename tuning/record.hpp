@@ -1,6 +1,6 @@
 #pragma once
 
-// Step 1 of the k_i, l_i fit (spec §7.5): fly the SDRE controller and keep, at every kept
+// Step 1 of the k_i, l_i fit (docs/model.md §8.1): fly the SDRE controller and keep, at every kept
 // controller sample, the time, the state it saw, the input at which its F, B were evaluated and
 // σ_max of its P. Saved as CSV so that fits rerun without re-flying.
 
@@ -33,7 +33,7 @@ struct TuningRecord {
 };
 
 // Flies like the wrapped SDRE and keeps the measured state and the applied input of every
-// `every`-th controller sample. The applied input is the converged fixed point of spec §7.6, so
+// `every`-th controller sample. The applied input is the converged fixed point of docs/model.md §6.2, so
 // the record's P and the θ–D's ΣT_i are both taken at the same (x_k; u_k): the fit compares the
 // two value matrices of one SDC, whatever the fixed point's last correction was. A Controller so
 // that anything that flies controllers (the command line's progress display) flies it too.

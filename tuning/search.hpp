@@ -19,9 +19,9 @@ struct FitOptions {
   // "LN_BOBYQA" (default), "LN_COBYLA", "LN_SBPLX", "LN_NELDERMEAD": local from the start point;
   // "GN_DIRECT_L", "GN_ISRES": global over the box first, then LN_BOBYQA from its best point.
   std::string algorithm = "LN_BOBYQA";
-  // Box of spec §7.5 (docs/tuning.md gives the reasons): k_i ∈ [0, 1.5], l_i ∈ [0.01, 20].
+  // Box of docs/model.md §8.1 (docs/tuning.md gives the reasons): k_i ∈ [0, 1.5], l_i ∈ [0.01, 20].
   double k_lower = 0.0, k_upper = 1.5, l_lower = 0.01, l_upper = 20.0;
-  // Start point; empty: the paper's k = l = 1 (spec §7.4).
+  // Start point; empty: the paper's k = l = 1 (docs/model.md §8.1).
   Eigen::VectorXd k_start, l_start;
   int max_local_evaluations = 1500;
   int max_global_evaluations = 800;

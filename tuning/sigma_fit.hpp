@@ -1,6 +1,6 @@
 #pragma once
 
-// The paper's objective for k_i, l_i of e_i(t) = 1 − k_i exp(−l_i t) (Eq. 25, spec §7.5): along a
+// The paper's objective for k_i, l_i of e_i(t) = 1 − k_i exp(−l_i t) (Eq. 25, docs/model.md §8.1): along a
 // recorded SDRE trajectory, Σ_k (σ_max[ΣT_i(x_k, t_k; k, l)] − σ_max[P(x_k)])². Each evaluation
 // is, per sample, a weighted sum of packed pieces (PackedSeries) and one symmetric eigenvalue problem.
 
@@ -42,7 +42,7 @@ class SigmaMatch {
   Eigen::VectorXd sigma_sdre_;
 };
 
-// The fit of spec §7.5: `fit` of search.hpp on match.residual(k, l, weighting).
+// The fit of docs/model.md §8.1: `fit` of search.hpp on match.residual(k, l, weighting).
 FitResult fit(const SigmaMatch& match, Weighting weighting, const FitOptions& options);
 
 }  // namespace thetad::tuning

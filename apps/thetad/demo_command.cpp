@@ -25,7 +25,7 @@ int run_demo(const std::filesystem::path& out) {
   using namespace heli;
   const Helicopter plant;  // nominal parameters, resolved preset, no wind: the controller's model
 
-  // Spec §7.1: at rest on the ground, s = 1, rotor speed from T_mr = m g.
+  // docs/model.md §8.1: at rest on the ground, s = 1, rotor speed from T_mr = m g.
   Eigen::VectorXd x0 = Eigen::VectorXd::Zero(kStateDim);
   x0(kS) = 1.0;
   const DesignDefaults defaults = plant.design_defaults();  // the paper's Q, R and u0 = [m g, 0, 0, 0, 0]

@@ -205,7 +205,7 @@ void print_report(const tuning::TuningReport& r, const std::vector<std::filesyst
 CLI::App* add_tune_command(CLI::App& app, TuneArguments& a) {
   auto* tune = app.add_subcommand(
       "tune", "Fit theta-D's k_i, l_i by an objective (sigma: the paper's sigma_max match to an SDRE flight, "
-              "paper-spec 7.5; entries: a per-entry match; closed-loop: mean cost or RMS error over seeded draws); "
+              "docs/model.md §8.1; entries: a per-entry match; closed-loop: mean cost or RMS error over seeded draws); "
               "compare default and tuned on held-out draws");
   add_flight_options(*tune, a.flight);
   tune->get_option("--out")->required();

@@ -10,7 +10,7 @@
 // (a ≈ −g θ forward, a ≈ g φ right), the vertical one a thrust change −m a_z. Inner loop: P(D) of
 // roll, pitch and heading onto the cyclics and the pedal, around their trim values.
 //
-// Why these gains (X-Cell hover derivatives, spec §10.3): a cyclic tilts the rotor through the
+// Why these gains (X-Cell hover derivatives, docs/model.md §13): a cyclic tilts the rotor through the
 // flapping, ḃ1 = −p − 10 b1 + 44.5 δ_lat, ṗ = 300 b1 (pitch: 44.5 and 159), so the rotor itself
 // damps the rates (ṗ ≈ −30 p): roll is s³ + 10 s² + 300 s + 13350 k_φ, and k_φ = 0.08 puts its
 // slow pole at −3.9 (pitch, k_θ = 0.05: −2.5) with the flapping pair at −3 ± 16j; no rate gain

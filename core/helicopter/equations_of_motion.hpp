@@ -6,7 +6,7 @@
 
 namespace thetad::heli {
 
-// Eqs. 1-9 and 26 (spec §2.9 step 7): xdot from the state, the input and the forces at them. A
+// Eqs. 1-9 and 26 (docs/model.md §3.7 step 7): xdot from the state, the input and the forces at them. A
 // template over the number type (double for Helicopter::f, Dual for Helicopter::jacobian), so
 // that the Jacobian differentiates the very expressions the simulator integrates.
 template <class T, class State, class Input, class Derivative>

@@ -10,7 +10,7 @@ namespace thetad::heli {
 
 namespace {
 
-constexpr double kMaxPitch = 85.0 * std::numbers::pi / 180.0;  // spec §6.5 guard
+constexpr double kMaxPitch = 85.0 * std::numbers::pi / 180.0;  // docs/model.md §3.4 guard
 
 // A magnitude clamp that keeps the sign (stall limits, A-20).
 template <class T>

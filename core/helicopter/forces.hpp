@@ -10,7 +10,7 @@
 namespace thetad::heli {
 
 // Attitude and air-relative velocity at a state: everything that comes before the rotor speed
-// (spec §2.9 step 1). In double, or in Dual for the Jacobian.
+// (docs/model.md §3.7 step 1). In double, or in Dual for the Jacobian.
 template <class T>
 struct BasicAirData {
   T sin_phi, cos_phi, sin_theta, cos_theta, tan_theta, sec_theta;
@@ -19,7 +19,7 @@ struct BasicAirData {
 };
 using AirData = BasicAirData<double>;
 
-// Every auxiliary quantity of one right-hand side (spec §2.7-2.8, §2.9 steps 2-6), computed once and
+// Every auxiliary quantity of one right-hand side (docs/model.md §4, §3.7 steps 2-6), computed once and
 // shared by Helicopter::f (which assembles Eqs. 1-9) and Helicopter::sdc (which places the same
 // numbers into F and B), so the two cannot disagree about the physics. In double, or in Dual for
 // Helicopter::jacobian, which differentiates the same code.
@@ -53,7 +53,7 @@ struct BasicForces {
 using Forces = BasicForces<double>;
 
 // The air data at state x (18 entries; only u..psi are read). Throws thetad::Error when |theta|
-// exceeds 85 degrees (spec §6.5) or is not finite.
+// exceeds 85 degrees (docs/model.md §3.4) or is not finite.
 AirData air_data(const Environment& environment, const Eigen::Ref<const Eigen::VectorXd>& x);
 
 // The forces and moments at state x for main-rotor speed rotor_speed (> 0, else thetad::Error).

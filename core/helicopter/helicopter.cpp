@@ -29,7 +29,7 @@ inline void require_size(const char* what, Eigen::Index rows, Eigen::Index cols,
 }
 
 // sin(x)/x from sin_x = sin(x), which the air data already holds; exact to double precision near
-// 0 by its Taylor series (spec §6.5).
+// 0 by its Taylor series (docs/model.md §6.1).
 double sinc(double x, double sin_x) { return std::abs(x) < 1e-4 ? 1.0 - x * x / 6.0 : sin_x / x; }
 
 // Omega_mr for the applied thrust at the air data of the state (A4, or the governor of A-11).
@@ -41,7 +41,7 @@ double rotor_speed_at(const Parameters& p, const ModelOptions& options, const Ai
   return main_rotor_speed(p, thrust, std::sqrt(air.u_a * air.u_a + air.v_a * air.v_a), air.w_a, p.omega_nom);
 }
 
-// The entries of Eqs. (29)-(30) that no state, input or rotor speed changes (spec §6.2, §6.3),
+// The entries of Eqs. (29)-(30) that no state, input or rotor speed changes (docs/model.md §6.1),
 // zeros included: written once into a controller's buffers, then left alone by fill_varying_sdc.
 void fill_constant_sdc(const Parameters& p, double yaw_inertia, Eigen::Ref<Eigen::MatrixXd> F,
                        Eigen::Ref<Eigen::MatrixXd> B) {

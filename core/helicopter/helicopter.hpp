@@ -18,7 +18,7 @@ struct Environment {
   double induced_tail_scale = 1.0;                            // Table 1 #30 on V_itr
 };
 
-// The X-Cell 60 of the paper over the 18-state augmented vector (spec §1-§2, §6):
+// The X-Cell 60 of the paper over the 18-state augmented vector (docs/model.md §2, §6):
 // f(x, u) is Eqs. 1-9 and 26 with Appendix A and B; sdc(x, u) is Eqs. 29-30 with the rotor speed
 // taken from u's thrust, so F x + B u == f(x, u) exactly.
 class Helicopter final : public SdcPlant {
@@ -49,7 +49,7 @@ class Helicopter final : public SdcPlant {
   bool sdc_depends_on_input() const override {
     return options_.rotor_speed_model != ModelOptions::RotorSpeedModel::governor;
   }
-  // V_track of Eq. (36) (spec §7.3).
+  // V_track of Eq. (36) (docs/model.md §7).
   void tracking_vector(const Eigen::Ref<const Eigen::VectorXd>& measured, const Reference& reference,
                        Eigen::Ref<Eigen::VectorXd> v) const override;
   // V_track on the true state: its integral entries are the integral of the true position error,
@@ -63,10 +63,10 @@ class Helicopter final : public SdcPlant {
   std::vector<LogColumn> input_columns() const override;
 
   // The paper's weights (Eqs. 33-34, paper_weights.hpp) and u0 = [m g, 0, 0, 0, 0], the rotor at
-  // hover thrust (spec §7.1, §7.6).
+  // hover thrust (docs/model.md §8.1, §6.2).
   DesignDefaults design_defaults() const override;
 
-  // F and B at a given main-rotor speed (what the controller's fixed point of spec §7.6 iterates on).
+  // F and B at a given main-rotor speed (what the controller's fixed point of docs/model.md §6.2 iterates on).
   void sdc_at_rotor_speed(const Eigen::Ref<const Eigen::VectorXd>& x, double rotor_speed,
                           Eigen::Ref<Eigen::MatrixXd> F, Eigen::Ref<Eigen::MatrixXd> B) const;
 

@@ -6,7 +6,7 @@
 
 namespace thetad::heli {
 
-// The model switches of spec §9: each member is one switch, named as in the spec's table, so that
+// The model switches of docs/model.md §11: each member is one switch, named as in the spec's table, so that
 // the paper-literal text and our resolution of its inconsistencies can both be flown.
 // Sign switches hold +1 or -1 and multiply the term they name.
 struct ModelOptions {
@@ -38,7 +38,7 @@ struct ModelOptions {
   // "resolved" or "paper"; throws thetad::Error otherwise.
   static ModelOptions preset(std::string_view name);
 
-  // The switch names, exactly as in spec §9 (the keys of the settings files).
+  // The switch names, exactly as in docs/model.md §11 (the keys of the settings files).
   static constexpr std::array<std::string_view, 11> names = {
       "lateral_flap_speed_sign", "collective_trim_offset", "flap_inflow_sign_source",
       "fuselage_downwash_sign",  "tail_rotor_velocity_sign", "yaw_inertia",

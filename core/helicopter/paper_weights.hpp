@@ -4,7 +4,7 @@
 
 namespace thetad::heli {
 
-// The paper's weights, Eqs. (33)-(34) with the lost exponents read as powers of ten (spec §7.2,
+// The paper's weights, Eqs. (33)-(34) with the lost exponents read as powers of ten (docs/model.md §7,
 // The state order is that of V_track (Eq. 36); the bias state s is not penalized.
 inline Eigen::VectorXd paper_state_weights() {
   Eigen::VectorXd q(18);

@@ -4,10 +4,10 @@
 
 namespace thetad::heli {
 
-// The physical parameters of the X-Cell 60 model (spec §3, the paper's Nomenclature), SI units.
+// The physical parameters of the X-Cell 60 model (docs/model.md §5, the paper's Nomenclature), SI units.
 // One field per quantity; the ones Table 1 perturbs are plain fields so that the uncertainty
 // table can point at them. Derived quantities are member functions, so they follow perturbed
-// inputs (spec §4.2: sigma from c_mr and R_mr, T_max from R_mr, rho, Omega_nom).
+// inputs (docs/model.md §9.1: sigma from c_mr and R_mr, T_max from R_mr, rho, Omega_nom).
 struct Parameters {
   double mass;              // m (kg)
   double gravity;           // g (m/s^2)
@@ -53,7 +53,7 @@ struct Parameters {
   double k_s;               // bias-state decay rate of Eq. 26 (1/s), proposed
   double collective_trim_offset;  // delta_col0 hover blade collective (rad), proposed
 
-  // The values of spec §3.
+  // The values of docs/model.md §5.
   static Parameters nominal();
 
   // sigma: 0.0361 as printed, or 2 c_mr/(pi R_mr) for two blades.
@@ -67,7 +67,7 @@ struct Parameters {
   double wake_skew_end() const;
   // sigma_tr = 2 c_tr/(pi R_tr).
   double tail_rotor_solidity() const;
-  // T_max = C_Tmax rho pi R_mr^2 (Omega_nom R_mr)^2 (spec §3, derived).
+  // T_max = C_Tmax rho pi R_mr^2 (Omega_nom R_mr)^2 (docs/model.md §5, derived).
   double max_main_rotor_thrust() const;
   // delta_col0 in effect: the parameter when the A-6 switch is on, else 0.
   double trim_collective(const ModelOptions& options) const;

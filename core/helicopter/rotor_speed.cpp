@@ -14,7 +14,7 @@ namespace thetad::heli {
 namespace {
 
 // A4 written as g(Omega) = k Omega sqrt(V_h^2 + (c Omega - w_a)^2) - T with k = 2 eta_w lambda0
-// rho pi R^3 and c = lambda0 R; this struct evaluates g and g' (spec §2.7.2).
+// rho pi R^3 and c = lambda0 R; this struct evaluates g and g' (docs/model.md §4.2).
 struct ThrustResidual {
   double k, c, vh2, w_a, thrust;
 

@@ -5,7 +5,7 @@
 
 namespace thetad::heli {
 
-// The bracket in which the main-rotor speed is searched (spec §2.7.2, rad/s).
+// The bracket in which the main-rotor speed is searched (docs/model.md §4.2, rad/s).
 inline constexpr double kMinRotorSpeed = 20.0;
 inline constexpr double kMaxRotorSpeed = 600.0;
 
@@ -15,7 +15,7 @@ inline constexpr double kMaxRotorSpeed = 600.0;
 // (A4 with A5, A6 multiplied out for Omega > 0).
 double main_rotor_thrust(const Parameters& p, double rotor_speed, double horizontal_airspeed, double w_a);
 
-// Omega_mr solving A4 for the thrust T_mr (spec §2.7.2): the root in [kMinRotorSpeed,
+// Omega_mr solving A4 for the thrust T_mr (docs/model.md §4.2): the root in [kMinRotorSpeed,
 // kMaxRotorSpeed], to 1e-12 relative, by safeguarded Newton with bisection fallback on each
 // interval where A4 is monotonic. In fast descent relative to the air (w_a > 0 and
 // w_a^2 > 8 V_h^2) A4 may have up to three roots; the one nearest `hint` is returned.

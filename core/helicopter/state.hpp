@@ -1,6 +1,6 @@
 #pragma once
 
-// Indices into the 18-state augmented vector xa (spec §1.2, Eq. 28) and the 5 inputs (Eq. 11).
+// Indices into the 18-state augmented vector xa (docs/model.md §2, Eq. 28) and the 5 inputs (Eq. 11).
 namespace thetad::heli {
 
 inline constexpr int kStateDim = 18;

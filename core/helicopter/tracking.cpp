@@ -3,7 +3,7 @@
 namespace thetad::heli {
 
 // Position errors, the 11 body/attitude/rate/flapping states as measured, integral errors and
-// s = 1 (Eq. 36, spec §7.3). The measured state's integral entries hold the integral of the
+// s = 1 (Eq. 36, docs/model.md §7). The measured state's integral entries hold the integral of the
 // measured position, so their difference from the reference integral is the integral error.
 void Helicopter::tracking_vector(const Eigen::Ref<const Eigen::VectorXd>& measured,
                                  const Reference& reference, Eigen::Ref<Eigen::VectorXd> v) const {

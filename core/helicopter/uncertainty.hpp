@@ -11,7 +11,7 @@
 
 namespace thetad::heli {
 
-// Table 1 of the paper (spec §4.2): 45 uncertainties in percent. Parameter entries perturb the
+// Table 1 of the paper (docs/model.md §9.1): 45 uncertainties in percent. Parameter entries perturb the
 // plant's true parameters once per run (p_true = p_nom (1 + pct/100 xi), xi in [-1, 1]); noise
 // entries act on a signal at every controller sample (applied by the simulator).
 enum class UncertaintyCategory { measurement, actuator, wind_noise, model_noise, parameter };

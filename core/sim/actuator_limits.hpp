@@ -20,8 +20,8 @@ struct ActuatorLimits {
   InputVector rate;          // N/s, rad/s, ...
 
   // The defaults of docs/model.md §12 for the X-Cell 60 with parameters `p`:
-  //   T_mr  [0, T_max]: T_max = C_Tmax ρ π R² (Ω_nom R)² (spec §3, 213 N nominal); the rotor-speed
-  //         model needs T_mr > 0 (spec §2.7.2), so no negative thrust.
+  //   T_mr  [0, T_max]: T_max = C_Tmax ρ π R² (Ω_nom R)² (docs/model.md §5, 213 N nominal); the rotor-speed
+  //         model needs T_mr > 0 (docs/model.md §4.2), so no negative thrust.
   //   δ_col blade pitch δ_col0 + δ_col in [−6°, +10°], the X-Cell's collective range with its stock
   //         blades (Miniature Aircraft's set-up notes); δ_col0 is the A-6 trim offset.
   //   δ_ped, δ_lon, δ_lat: no published range; twice the largest |trim| of steady flight forward

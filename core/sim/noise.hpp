@@ -42,7 +42,7 @@ struct NoiseLevels {
   static NoiseLevels from_uncertainty_table(double scale = 1.0);
 };
 
-// What the 5 % measurement noise multiplies (spec §4.4, A-25).
+// What the 5 % measurement noise multiplies (docs/model.md §9.3, §11 ).
 enum class MeasurementNoiseOn {
   feedback_signal,  // the V_track entries: position errors x_p - x_c, the other 11 states as they are
   absolute_state,   // the literal reading: the absolute positions (diverges with the paper's Q)
@@ -63,12 +63,12 @@ struct NoiseSettings {
 // x_c + (x_p - x_c)(1 + level n), so that measured position minus reference is the true error
 // times (1 + level n). Entries 14-16 are not sensed: they hold the integral of the measured
 // position by the PositionIntegral rule (passed in), so measured x_i minus the reference integral
-// is the integral error of V_track. Entry 17 is the controller's bias state, s = 1 (spec §5.9).
+// is the integral error of V_track. Entry 17 is the controller's bias state, s = 1 (docs/model.md §2).
 void measure(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Vector3d& reference_position,
              const Eigen::Vector3d& measured_position_integral, const SampleDraws& draws,
              const NoiseLevels& levels, const NoiseSettings& settings, Eigen::Ref<Eigen::VectorXd> measured);
 
-// u_applied = u_command (1 + level n) per channel (spec §4.5), or the command when switched off.
+// u_applied = u_command (1 + level n) per channel (docs/model.md §9.4), or the command when switched off.
 void apply_actuator_noise(const Eigen::Ref<const Eigen::VectorXd>& command, const SampleDraws& draws,
                           const NoiseLevels& levels, const NoiseSettings& settings,
                           Eigen::Ref<Eigen::VectorXd> applied);

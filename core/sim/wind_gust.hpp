@@ -4,7 +4,7 @@
 
 namespace thetad::sim {
 
-// The gust of spec §4.3 (paper Sec. 2.4, scaled down from AC120-28D; A-4).
+// The gust of docs/model.md §9.2 (paper Sec. 2.4, scaled down from AC120-28D; A-4).
 struct WindGustSettings {
   enum class Model {
     held_white,    // independent samples, zero-order held between controller samples (the default)

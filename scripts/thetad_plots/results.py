@@ -23,7 +23,7 @@ class PlotError(Exception):
     """A problem with the input, said in one line (the command prints it and exits with 1)."""
 
 
-# How a schema unit is shown to people (spec §8.2: degrees for angles): (label, factor).
+# How a schema unit is shown to people (docs/model.md §1: degrees for angles): (label, factor).
 DISPLAY_UNITS = {
     "s": ("s", 1.0),
     "m": ("m", 1.0),

@@ -2,7 +2,7 @@
 // `thetad run` builds them: hover recovery for θ–D (the other controllers have theirs beside their
 // unit tests) and the first 20 s of scenario I (takeoff, hover, the start of the figure 8) in the
 // ideal setting. The bounds are the measured figures with a margin; the full-length scenarios are
-// checked against spec §10.5 by scripts/check-reference-closed-loop.sh, outside `make test`.
+// checked against docs/model.md §13 by scripts/check-reference-closed-loop.sh, outside `make test`.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -43,7 +43,7 @@ struct ScenarioBound {
 
 // Measured (ideal): θ–D 0.542/0.516/0.0371 m, SDRE 0.541/0.517/0.0373 m, hover LQR
 // 0.498/0.505/0.0376 m over the first 20 s; the largest errors come at the abrupt start of the
-// figure 8 at 12 s (spec §10.5 gives 0.54/0.52/0.037 m for θ–D over the whole scenario). The
+// figure 8 at 12 s (docs/model.md §13 gives 0.54/0.52/0.037 m for θ–D over the whole scenario). The
 // bounds leave ~20 % margin for compiler and library differences.
 class FirstTwentySeconds : public ::testing::TestWithParam<ScenarioBound> {};
 

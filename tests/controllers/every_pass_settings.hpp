@@ -1,7 +1,7 @@
 #pragma once
 
 // θ–D or SDRE settings with the model's design defaults (the paper's weights, u0 = hover thrust,
-// spec §7.1, §7.6), and the same with every one of `passes` fixed-point passes run (tolerance 0),
+// docs/model.md §8.1, §6.2), and the same with every one of `passes` fixed-point passes run (tolerance 0),
 // so that "3 passes" always means 3. Shared by the controller tests and the benchmarks.
 
 #include "core/sdc_plant.hpp"

@@ -36,7 +36,7 @@ SdreSettings paper_settings(const heli::Helicopter& model, SdreSettings::Mode mo
   return settings;
 }
 
-// The moving, tilted state of spec §10.4 at hover altitude: hover plus ε times a fixed direction.
+// The moving, tilted state of docs/model.md §13 at hover altitude: hover plus ε times a fixed direction.
 Eigen::VectorXd moving_state(double epsilon) {
   Eigen::VectorXd x = Eigen::VectorXd::Zero(heli::kStateDim);
   x(heli::kZp) = -3.5;

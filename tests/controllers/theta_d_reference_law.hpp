@@ -24,7 +24,7 @@ inline Eigen::VectorXd reference_law(ThetaDController& controller, const SdcPlan
   return -s.R.llt().solve(B.transpose() * (P * v));
 }
 
-// The fixed point of spec §7.6 on reference_law: `passes` passes from the last applied input.
+// The fixed point of docs/model.md §6.2 on reference_law: `passes` passes from the last applied input.
 inline Eigen::VectorXd reference_control(ThetaDController& controller, const SdcPlant& model, const Eigen::VectorXd& x,
                                          const Eigen::VectorXd& previous, const Eigen::VectorXd& v, double t,
                                          int passes) {

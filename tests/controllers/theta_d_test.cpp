@@ -33,7 +33,7 @@ using Eigen::VectorXd;
 using ::testing::HasSubstr;
 
 // Convention of these tests: "order k" is the partial sum Σ_{i≤k} T_i (k terms beyond T0, i.e.
-// N = k + 1 terms), as in the columns of spec §10.4; its error against the SDRE solution falls as
+// N = k + 1 terms), as in the columns of docs/model.md §13; its error against the SDRE solution falls as
 // ε^{k+1} when e_i ≡ 1 (k_i = 0).
 constexpr int kHighestOrder = 3;
 
@@ -126,7 +126,7 @@ TEST_F(CompanionFixture, SeriesErrorFallsAsEpsilonToTheOrderPlusOne) {
 
 TEST_F(CompanionFixture, PerturbationWeightsScaleTheTerms) {
   // e_i(t) = 1 − k_i exp(−l_i (t − t0)) (Eq. 25). At t = t0 with k_i = 1 only T0 acts; T1 is
-  // linear in e1 (spec §7.5: T1 = e1 T1°).
+  // linear in e1 (docs/model.md §8.1: T1 = e1 T1°).
   ThetaDSettings s = plain_series(Q, R, 2);
   s.k = VectorXd::Constant(1, 1.0);
   s.l = VectorXd::Constant(1, 2.0);
@@ -242,7 +242,7 @@ TEST(ThetaDGeneric, RejectsSettingsThatDoNotFitThePlant) {
               ::testing::ThrowsMessage<Error>(HasSubstr("before reset")));
 }
 
-// ---- the helicopter (spec §10.3, §10.4) ------------------------------------------------------
+// ---- the helicopter (docs/model.md §13) ------------------------------------------------------
 
 struct HelicopterFixture : ::testing::Test {
   heli::Helicopter model;
@@ -304,7 +304,7 @@ TEST_F(HelicopterFixture, FrozenSystemMatchesSpec10_3) {
     computed.erase(nearest);
   }
 
-  // The s-column feed-forward −R⁻¹ g0ᵀ T0(:, 18) (spec §10.3, §7.3).
+  // The s-column feed-forward −R⁻¹ g0ᵀ T0(:, 18) (docs/model.md §13, §7).
   const VectorXd feed_forward = -R.inverse() * controller.g0().transpose() * controller.T0().col(heli::kS);
   const std::vector<std::string> printed_ff{"80.7656", "-0.03912", "0", "0", "0.07319"};
   for (int j = 0; j < 5; ++j) {
@@ -363,7 +363,7 @@ VectorXd typical_state() {
 }
 
 TEST_F(HelicopterFixture, FixedPointConvergesWithinThreePassesInClosedLoop) {
-  // Spec §7.6 where it is meant to hold: in a closed loop at 1 kHz, each sample starting from the
+  // docs/model.md §6.2 where it is meant to hold: in a closed loop at 1 kHz, each sample starting from the
   // input applied at the previous one. A disturbed hover (ε = 0.3 along the §10.4 direction) is
   // flown for 0.3 s (RK4, zero-order hold); after the first 20 samples, whose inputs still jump
   // by newtons per millisecond, every sample must reach |Δu| < 1e-6 within the 3 passes.

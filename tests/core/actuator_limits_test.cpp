@@ -156,7 +156,7 @@ TEST(ActuatorLimitsTest, DefaultsHoldSteadyFlightWithTheirMargin) {
   const Parameters p = Parameters::nominal();
   const ActuatorLimits limits = ActuatorLimits::x_cell(p);
   EXPECT_DOUBLE_EQ(limits.upper[kTmr], p.max_main_rotor_thrust());
-  EXPECT_NEAR(limits.upper[kTmr], 212.96, 0.01);  // spec §3
+  EXPECT_NEAR(limits.upper[kTmr], 212.96, 0.01);  // docs/model.md §5
   EXPECT_EQ(limits.lower[kTmr], 0.0);
   EXPECT_NEAR((limits.lower[kCol] + p.collective_trim_offset) / kDegree, -6.0, 1e-12);
   EXPECT_NEAR((limits.upper[kCol] + p.collective_trim_offset) / kDegree, 10.0, 1e-12);

@@ -19,7 +19,7 @@ namespace {
 
 using namespace testing;
 
-// Spec §10.3: A0 = F and g0 = B at rest, s = 1, T_mr = m g, resolved preset.
+// docs/model.md §13: A0 = F and g0 = B at rest, s = 1, T_mr = m g, resolved preset.
 TEST(HelicopterReference, RestStateA0AndG0) {
   Helicopter heli;
   const Eigen::VectorXd x = rest_state();
@@ -80,7 +80,7 @@ TEST(HelicopterReference, RestStateA0AndG0) {
   EXPECT_NEAR(others[4].imag(), 16.583, 5e-4);
 }
 
-// Spec §10.2: the hover trim at h = 3.5 m (u = v = w = p = q = r = 0, theta = a1 = delta_lon =
+// docs/model.md §13: the hover trim at h = 3.5 m (u = v = w = p = q = r = 0, theta = a1 = delta_lon =
 // delta_col = 0). Unknowns phi, b1, T_mr, delta_ped, delta_lat; equations v_dot, w_dot, p_dot,
 // r_dot, b1_dot = 0.
 using TrimVector = Eigen::Matrix<double, 5, 1>;
@@ -198,7 +198,7 @@ TEST(HelicopterReference, PaperPresetUsesNomenclatureSolidityInTheTorque) {
   // C_Q = C_T lambda0 + C_D0 sigma/8 in hover: 0.0019602 * 0.033 + 0.024 * 0.0361/8.
   EXPECT_NEAR(forces.torque_coefficient, 2 * 0.9 * 0.033 * 0.033 * 0.033 + 0.024 * 0.0361 / 8, 1e-15);
   std::cout << "paper preset (sigma = 0.0361) in hover: C_Q " << forces.torque_coefficient << ", Q_mr " << forces.q_mr
-            << " (spec §10.2 prints 2.0760e-4, 6.5532)\n";
+            << " (docs/model.md §13 prints 2.0760e-4, 6.5532)\n";
 }
 
 }  // namespace

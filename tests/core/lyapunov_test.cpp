@@ -127,7 +127,7 @@ TEST(ConstantLyapunovSolver, AgreesWithSolveLyapunov) {
 }
 
 TEST(ConstantLyapunovSolver, WideEigenvalueSpreadLikeThePaper) {
-  // The θ–D Ac0 (paper-spec §10.3) has eigenvalues from −0.1 to −219: the same spread here,
+  // The θ–D Ac0 (docs/model.md §13) has eigenvalues from −0.1 to −219: the same spread here,
   // behind a non-orthogonal similarity, with weights spanning nine decades as in §7.2. (With a
   // stronger similarity, 0.3 instead of 0.1, the operator's condition number reaches 2e7 and
   // both methods' residuals rise together to ~5e-11: the limit is the problem, not the method.)

@@ -101,7 +101,7 @@ TEST(SolveCare, RandomStabilizableSystems) {
   EXPECT_EQ(unstable_systems, 820);
 }
 
-// The paper-sized plant at rest: A0 = F(xa(t0)), g0 = B(xa(t0)) of paper-spec §10.3, weights of §7.2.
+// The paper-sized plant at rest: A0 = F(xa(t0)), g0 = B(xa(t0)) of docs/model.md §13, weights of §7.2.
 struct PaperPlant {
   MatrixXd A = MatrixXd::Zero(18, 18);
   MatrixXd B = MatrixXd::Zero(18, 5);
@@ -118,7 +118,7 @@ struct PaperPlant {
   }
 };
 
-// Against paper-spec §10.3 the comparison is relative 2e-4, not the printed digits: our input
+// Against docs/model.md §13 the comparison is relative 2e-4, not the printed digits: our input
 // is the printed (rounded) A0 and g0, and solve_care agrees with scipy on that input to 1e-11
 // (checked below), yet four diag(T0) entries, the thrust feed-forward and two slow closed-loop
 // eigenvalues differ from the spec by more than half a unit of its last digit:

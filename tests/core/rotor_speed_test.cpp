@@ -15,12 +15,12 @@ const Parameters kNominal = Parameters::nominal();
 const double kHoverThrust = kNominal.mass * kNominal.gravity;  // 80.442 N
 
 TEST(RotorSpeed, RestValueOfSpec) {
-  // Spec §2.7.2 / §10.2: T_mr = m g at rest -> 171.927 rad/s.
+  // docs/model.md §4.2 / §10.2: T_mr = m g at rest -> 171.927 rad/s.
   EXPECT_NEAR(main_rotor_speed(kNominal, kHoverThrust, 0.0, 0.0, kNominal.omega_nom), 171.927, 5e-4);
 }
 
 TEST(RotorSpeed, SanityTableOfSpec) {
-  // Spec §2.7.2: same thrust at V_h = 0, 1, 2, 3, 5, 10, 20 m/s (printed to 0.1 rad/s, 0.01 at 0).
+  // docs/model.md §4.2: same thrust at V_h = 0, 1, 2, 3, 5, 10, 20 m/s (printed to 0.1 rad/s, 0.01 at 0).
   const double speeds[] = {0, 1, 2, 3, 5, 10, 20};
   const double printed[] = {171.93, 169.7, 163.3, 153.2, 126.8, 74.3, 37.8};
   for (int i = 0; i < 7; ++i) {

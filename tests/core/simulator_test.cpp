@@ -30,7 +30,7 @@ namespace {
 using namespace heli;
 namespace fs = std::filesystem;
 
-// Hover trim at h = 3.5 m, resolved preset, as printed in spec §10.2.
+// Hover trim at h = 3.5 m, resolved preset, as printed in docs/model.md §13.
 Eigen::VectorXd hover_trim_state() {
   Eigen::VectorXd x = Eigen::VectorXd::Zero(kStateDim);
   x[kZp] = -3.5;
@@ -152,7 +152,7 @@ TEST(Simulator, OpenLoopHoverFromPrintedTrimStaysNearTrimForOneSecond) {
   // times 218 rad/s^2 per rad of yaw authority). The bounds leave a factor of ~50.
   EXPECT_LT(drift, 1e-3);
   EXPECT_LT(attitude_drift, 4e-4);
-  EXPECT_NEAR(result.log.row(0)[column("Omega_mr_rad_per_s")], 171.966, 0.01);  // spec §10.2
+  EXPECT_NEAR(result.log.row(0)[column("Omega_mr_rad_per_s")], 171.966, 0.01);  // docs/model.md §13
 }
 
 TEST_F(SimulatorFiles, SameSeedGivesByteIdenticalFilesAndAnotherSeedDiffers) {

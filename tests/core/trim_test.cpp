@@ -65,7 +65,7 @@ void expect_equilibrium(const Helicopter& plant, const Trim& trim, const TrimCon
   EXPECT_GT(trim.iterations, 0);
 }
 
-// One row of spec §10.2: a value printed with `decimals` digits after the point.
+// One row of docs/model.md §13: a value printed with `decimals` digits after the point.
 struct Printed {
   const char* name;
   double computed;
@@ -170,10 +170,10 @@ TEST(Trim, HoverWithZeroCollectiveIsExactlyDetermined) {
   EXPECT_GT(singular.minCoeff() / singular.maxCoeff(), 1e-8) << "singular values " << singular.transpose();
 }
 
-// Spec A-11: with the paper's thrust inversion Omega_mr falls with speed; trims exist to 5 m/s.
+// docs/model.md §11: with the paper's thrust inversion Omega_mr falls with speed; trims exist to 5 m/s.
 TEST(Trim, ForwardFlightWithThrustInversionRotor) {
   const Helicopter plant = make_plant(ModelOptions::resolved(), ModelOptions::RotorSpeedModel::thrust_inversion);
-  // Omega_mr at T_mr = m g for V_h = 1, 2, 3, 5 m/s (spec §2.7.2); the trim thrust differs by < 1 %.
+  // Omega_mr at T_mr = m g for V_h = 1, 2, 3, 5 m/s (docs/model.md §4.2); the trim thrust differs by < 1 %.
   const std::vector<std::pair<double, double>> sanity = {{1, 169.7}, {2, 163.3}, {3, 153.2}, {5, 126.8}};
   double previous_speed = 0.0;
   for (int speed = 0; speed <= 5; ++speed) {

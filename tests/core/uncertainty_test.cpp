@@ -29,7 +29,7 @@ TEST(Uncertainty, TableHas45EntriesIn4Plus1Categories) {
 }
 
 TEST(Uncertainty, PercentsOfTable1) {
-  // Spot checks against spec §4.2, and the sum of all 45 percents.
+  // Spot checks against docs/model.md §9.1, and the sum of all 45 percents.
   EXPECT_EQ(kUncertaintyTable[21].name, "T_mr");
   EXPECT_EQ(kUncertaintyTable[21].percent, 5.0);
   EXPECT_EQ(kUncertaintyTable[28].name, "V_imr");
@@ -78,7 +78,7 @@ TEST(Uncertainty, DrawIsReproducibleBySeedAndWithinBounds) {
   }
   EXPECT_EQ(parameters, 21);
   EXPECT_TRUE(any_differs);
-  // Parameters outside Table 1 are exact (spec §4.2).
+  // Parameters outside Table 1 are exact (docs/model.md §9.1).
   EXPECT_EQ(a.parameters.s_vf, kNominal.s_vf);
   EXPECT_EQ(a.parameters.cd_x, kNominal.cd_x);
   EXPECT_EQ(a.parameters.i_beta, kNominal.i_beta);

@@ -39,7 +39,7 @@ Moments sample_moments(const WindGustSettings& settings, double period, int coun
 
 TEST(MeanNorthWind, FollowsSpecFormulaWithAltitudeAndMeanFloors) {
   EXPECT_NEAR(mean_north_wind(-3.5), 1.258 + 0.949 * std::log10(3.5), 1e-15);
-  EXPECT_NEAR(mean_north_wind(-3.5), 1.774, 5e-4);  // spec §4.3
+  EXPECT_NEAR(mean_north_wind(-3.5), 1.774, 5e-4);  // docs/model.md §9.2
   EXPECT_NEAR(mean_north_wind(0.0), 0.309, 5e-4);   // h floored at 0.1 m
   EXPECT_EQ(mean_north_wind(0.5), mean_north_wind(0.0));  // below ground: same floor
   EXPECT_GE(mean_north_wind(-0.05), 0.0);

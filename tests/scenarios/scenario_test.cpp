@@ -37,7 +37,7 @@ TEST(Scenario, TheValidTestFileLoads) {
   EXPECT_EQ(scenario.duration, 12.0);
   EXPECT_EQ(scenario.trajectory.phases().size(), 2u);
   EXPECT_EQ(scenario.trajectory.position(12.0), Eigen::Vector3d(0.0, 0.0, -3.5));  // h = 3.5 -> z = -3.5
-  // Default initial state: at rest on the ground, s = 1 (spec §7.1); the paper's disturbances.
+  // Default initial state: at rest on the ground, s = 1 (docs/model.md §8.1); the paper's disturbances.
   Eigen::VectorXd rest = Eigen::VectorXd::Zero(heli::kStateDim);
   rest(heli::kS) = 1.0;
   EXPECT_EQ(scenario.initial_state, rest);

@@ -22,7 +22,7 @@ void expect_near(const Eigen::Vector3d& actual, const Eigen::Vector3d& expected,
                                                    << expected.transpose();
 }
 
-// Scenario I of spec §8.4, altitude h -> z = -h.
+// Scenario I of docs/model.md §10, altitude h -> z = -h.
 PhasedTrajectory scenario_one() {
   PhasedTrajectory trajectory;
   trajectory.append("takeoff", 7.0, Ramp{{0.0, 0.0, -3.5}});

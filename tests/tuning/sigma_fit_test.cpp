@@ -1,4 +1,4 @@
-// The k_i, l_i fit (spec §7.5): recovery of known parameters, determinism over threads, a real
+// The k_i, l_i fit (docs/model.md §8.1): recovery of known parameters, determinism over threads, a real
 // SDRE record, and clear errors for bad input.
 #include <cmath>
 #include <filesystem>
