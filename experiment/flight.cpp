@@ -61,6 +61,14 @@ Flight Flight::of_plant(std::shared_ptr<const SdcPlant> plant, const std::string
                 " entries, the plant " + std::to_string(plant->state_dim()) + " states");
   if (controls.initial_offset || controls.initial_attitude_offset || controls.speed_scale)
     throw Error("plant " + name + ": initial offsets and speed scales apply to the helicopter's scenarios");
+  // It flies as it is (sim::NoDisturbances): a switch that turns a disturbance on would be recorded
+  // as on and have no effect.
+  for (const auto& asked : {controls.parameter_uncertainty, controls.wind_gust, controls.measurement_noise,
+                            controls.actuator_noise, controls.wind_noise, controls.induced_velocity_noise,
+                            controls.actuator_limits}) {
+    if (asked.value_or(false))
+      throw Error("plant " + name + ": it flies without disturbances or actuator limits (those are the helicopter's)");
+  }
   Flight flight;
   flight.scenario_.name = name;
   flight.scenario_.description = "the plant " + name + " regulated to the origin";

@@ -101,6 +101,10 @@ TEST(PlantFlight, ControllersThatNeedTheHelicopterAndBadRunsAreClear) {
               HasSubstr("the initial state has 3 entries"));
   EXPECT_THAT(testing::error_message([&] { fly(plant, "theta-d", Eigen::Vector2d(1, 0), RunControls{}); }),
               HasSubstr("needs a duration"));
+  RunControls windy = seconds(1.0);
+  windy.wind_gust = true;
+  EXPECT_THAT(testing::error_message([&] { fly(plant, "theta-d", Eigen::Vector2d(1, 0), windy); }),
+              HasSubstr("flies without disturbances or actuator limits"));
   // A plant the controller cannot stabilize (no input authority): the SDRE's CARE fails at the first
   // sample and the run ends there, as failed (the controller's fault), with the reason.
   const RunResult flown = fly(scalar_plant(5.0, 0.0), "sdre", Eigen::VectorXd::Ones(1), seconds(10.0));
