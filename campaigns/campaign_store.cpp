@@ -3,6 +3,7 @@
 #include <sqlite3.h>
 
 #include <algorithm>
+#include <limits>
 
 #include <nlohmann/json.hpp>
 
@@ -17,6 +18,9 @@ namespace fs = std::filesystem;
 
 // The database format: a reader checks it before trusting the columns.
 constexpr const char* kFormat = "thetad-campaign-1";
+// meta format_version (docs/glossary.md); absent in version 1. 2: J_dev (metric cost_dev) and the
+// information set (column information) of every run.
+constexpr int kFormatVersion = 2;
 
 // A prepared statement, finalized with its scope.
 class Statement {
@@ -77,7 +81,8 @@ sqlite3* open_database(const fs::path& file, int flags) {
 std::vector<std::string> run_columns() {
   std::vector<std::string> columns{"cell", "draw", "scenario", "controller", "seed"};
   for (const Factor& factor : factors()) columns.emplace_back(factor.name);
-  for (const char* name : {"status", "reason", "end_time_s", "controller_samples"}) columns.emplace_back(name);
+  for (const char* name : {"status", "reason", "information", "end_time_s", "controller_samples"})
+    columns.emplace_back(name);
   for (const MetricColumn& metric : metric_columns()) columns.emplace_back(metric.name);
   return columns;
 }
@@ -85,6 +90,15 @@ std::vector<std::string> run_columns() {
 }  // namespace
 
 fs::path store_file(const fs::path& out) { return out / "campaign.sqlite"; }
+
+void CampaignStore::check_format(const fs::path& file) const {
+  if (meta("format") != kFormat) throw Error(file.string() + ": not a thetad campaign database (" + kFormat + ")");
+  const std::string version = meta("format_version");
+  if (version == std::to_string(kFormatVersion)) return;
+  throw Error(file.string() + ": a campaign database of format_version " + (version.empty() ? "1" : version) +
+              ", written by another thetad (this one writes and reads version " + std::to_string(kFormatVersion) +
+              ", which adds J_dev and the information set): run the campaign anew into another folder");
+}
 
 CampaignStore::CampaignStore(const fs::path& file, const Campaign& campaign, const Shard& shard, Open open,
                              const std::string& provenance)
@@ -100,7 +114,7 @@ CampaignStore::CampaignStore(const fs::path& file, const Campaign& campaign, con
     sync_entry(file);
     return;
   }
-  if (meta("format") != kFormat) throw Error(file.string() + ": not a thetad campaign database (" + kFormat + ")");
+  check_format(file);
   if (meta("campaign_sha256") != campaign.sha256)
     throw Error(file.string() + ": holds another campaign (its campaign file's SHA-256 differs from " +
                 campaign.file.string() + "'s): refusing to resume");
@@ -111,7 +125,7 @@ CampaignStore::CampaignStore(const fs::path& file, const Campaign& campaign, con
 CampaignStore::CampaignStore(const fs::path& file) : file_(file) {
   if (!fs::exists(file)) throw Error(file.string() + ": no such campaign database");
   db_ = open_database(file, SQLITE_OPEN_READONLY);
-  if (meta("format") != kFormat) throw Error(file.string() + ": not a thetad campaign database (" + kFormat + ")");
+  check_format(file);
 }
 
 CampaignStore::CampaignStore(const fs::path& file, const CampaignStore& like) : file_(file) {
@@ -154,7 +168,7 @@ void CampaignStore::create_tables() {
                     " CREATE TABLE runs (run_index INTEGER PRIMARY KEY";
   for (const std::string& column : run_columns()) {
     const bool is_text = column == "scenario" || column == "controller" || column == "seed" || column == "status" ||
-                         column == "reason";
+                         column == "reason" || column == "information";
     sql += ", " + column + (is_text ? " TEXT" : column == "cell" || column == "draw" || column == "controller_samples" ? " INTEGER" : " REAL");
   }
   sql += ");";
@@ -169,6 +183,7 @@ void CampaignStore::create_schema(const Campaign& campaign, const Shard& shard, 
   nlohmann::ordered_json labels = nlohmann::ordered_json::array();
   for (const auto& spec : campaign.controllers) labels.push_back(spec.label);
   set_meta("format", kFormat);
+  set_meta("format_version", std::to_string(kFormatVersion));
   set_meta("campaign_name", campaign.name);
   set_meta("campaign_file", fs::absolute(campaign.file).lexically_normal().string());
   set_meta("campaign_text", campaign.text);
@@ -234,6 +249,7 @@ void CampaignStore::write(const std::vector<RunRecord>& records) {
       }
       insert.bind(i++, r.status);
       insert.bind(i++, r.reason);
+      insert.bind(i++, r.information);
       insert.bind(i++, r.end_time);
       insert.bind(i++, r.controller_samples);
       for (double value : r.metrics) insert.bind(i++, value);
@@ -269,9 +285,12 @@ std::vector<RunRecord> CampaignStore::records() const {
     }
     r.status = select.text(i++);
     r.reason = select.text(i++);
+    r.information = select.text(i++);
     r.end_time = select.number(i++);
     r.controller_samples = select.integer(i++);
-    for (std::size_t m = 0; m < metric_columns().size(); ++m) r.metrics.push_back(select.number(i++));
+    // A metric a run does not have (J_dev of a plant without trims) is stored as NULL.
+    for (std::size_t m = 0; m < metric_columns().size(); ++m, ++i)
+      r.metrics.push_back(select.is_null(i) ? std::numeric_limits<double>::quiet_NaN() : select.number(i));
     records.push_back(std::move(r));
   }
   return records;

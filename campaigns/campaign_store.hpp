@@ -53,6 +53,8 @@ class CampaignStore {
   void execute(const std::string& sql) const;
   // WAL journal, every commit flushed to disk (synchronous=FULL).
   void make_durable();
+  // Throws thetad::Error unless the database is of this thetad's format, naming an earlier one.
+  void check_format(const std::filesystem::path& file) const;
   void create_tables();
   void create_schema(const Campaign& campaign, const Shard& shard, const std::string& provenance);
 

@@ -1,5 +1,7 @@
 #include "campaigns/run_record.hpp"
 
+#include <limits>
+
 namespace thetad {
 
 const std::vector<MetricColumn>& metric_columns() {
@@ -7,6 +9,7 @@ const std::vector<MetricColumn>& metric_columns() {
       {"rms_x_m", false},         {"rms_y_m", false},           {"rms_z_m", false},
       {"rms_error_m", false},     {"max_x_m", false},           {"max_y_m", false},
       {"max_z_m", false},         {"max_error_m", false},       {"cost", false},
+      {"cost_dev", false},
       {"effort_thrust_N", false}, {"effort_pedal_rad", false},  {"effort_collective_rad", false},
       {"effort_longitudinal_rad", false}, {"effort_lateral_rad", false},
       {"compute_us_mean", true},  {"compute_us_median", true},  {"compute_us_p99", true},
@@ -27,13 +30,15 @@ RunRecord make_record(const PlannedRun& run, const FactorValues& factors, const 
   record.factors = factors;
   record.status = sim::status_name(s.status);
   record.reason = s.reason;
+  record.information = information_set(result);
   record.end_time = s.end_time;
   record.controller_samples = s.controller_samples;
   // rms_error: the RMS of the 3-D error's norm, sqrt(rms_x^2 + rms_y^2 + rms_z^2); max_error: the
   // largest per-axis maximum (the summary keeps the maxima per axis).
   record.metrics = {s.rms_tracking_error.x(), s.rms_tracking_error.y(), s.rms_tracking_error.z(),
                     s.rms_tracking_error.norm(), s.max_tracking_error.x(), s.max_tracking_error.y(),
-                    s.max_tracking_error.z(), s.max_tracking_error.maxCoeff(), s.cost};
+                    s.max_tracking_error.z(), s.max_tracking_error.maxCoeff(), s.cost,
+                    s.cost_dev.value_or(std::numeric_limits<double>::quiet_NaN())};
   for (int i = 0; i < s.command_rms.size(); ++i) record.metrics.push_back(s.command_rms[i]);
   record.metrics.insert(record.metrics.end(), {s.compute_ns_mean / 1e3, s.compute_ns_median / 1e3,
                                                s.compute_ns_p99 / 1e3, result.wall_seconds});
@@ -46,6 +51,7 @@ nlohmann::json to_json(const RunRecord& r) {
   return {{"index", r.index},          {"cell", r.cell},     {"draw", r.draw},
           {"scenario", r.scenario},    {"controller", r.controller}, {"seed", r.seed},
           {"factors", factors},        {"status", r.status},   {"reason", r.reason},
+          {"information", r.information},
           {"end_time", r.end_time},    {"samples", r.controller_samples}, {"metrics", r.metrics}};
 }
 
@@ -60,6 +66,7 @@ RunRecord record_from_json(const nlohmann::json& j) {
   for (const auto& factor : j.at("factors")) r.factors.emplace_back(factor.at(0).get<std::string>(), factor.at(1).get<double>());
   r.status = j.at("status").get<std::string>();
   r.reason = j.at("reason").get<std::string>();
+  r.information = j.at("information").get<std::string>();
   r.end_time = j.at("end_time").get<double>();
   r.controller_samples = j.at("samples").get<std::int64_t>();
   r.metrics = j.at("metrics").get<std::vector<double>>();

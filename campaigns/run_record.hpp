@@ -33,6 +33,7 @@ struct RunRecord {
   FactorValues factors;     // the cell's factors
   std::string status;       // sim::status_name(): completed, diverged or failed (the controller threw or gave NaN)
   std::string reason;       // why it diverged or failed; empty when completed
+  std::string information;  // what the controller took from the reference (information_set)
   bool completed() const { return status == "completed"; }
   double end_time = 0.0;    // s
   std::int64_t controller_samples = 0;

@@ -3,6 +3,7 @@
 #include <string>
 #include <utility>
 
+#include "controllers/feedforward_controller.hpp"
 #include "controllers/registry.hpp"
 #include "settings/settings.hpp"
 #include "core/error.hpp"
@@ -33,6 +34,19 @@ LqrController::LqrController(const SdcPlant& model, OperatingPoint point, LqrSet
   design_ = design_lqr(model, point_, settings.Q, settings.R, design_states_);
 }
 
+LqrController::LqrController(const SdcPlant& model, OperatingPoint point, CareResult design,
+                             Eigen::Index design_states)
+    : model_(&model),
+      point_(std::move(point)),
+      design_(std::move(design)),
+      design_states_(design_states),
+      v_(Eigen::VectorXd::Zero(model.state_dim())) {
+  checked_design_states(model, point_, LqrSettings{{}, {}, design_states});
+  if (design_.K.rows() != model.input_dim() || design_.K.cols() != design_states_)
+    throw Error("lqr: the gain is " + std::to_string(design_.K.rows()) + "x" + std::to_string(design_.K.cols()) +
+                ", the model needs " + std::to_string(model.input_dim()) + "x" + std::to_string(design_states_));
+}
+
 void LqrController::reset(const Eigen::VectorXd& x0, double) {
   if (x0.size() != model_->state_dim()) {
     throw Error("lqr: initial state has " + std::to_string(x0.size()) + " entries, the model " +
@@ -52,11 +66,12 @@ namespace {
 
 std::unique_ptr<Controller> make_lqr(const Settings& fields, const ControllerContext& context) {
   const heli::Helicopter& model = helicopter_of(context, "lqr");
-  fields.allow_only({"Q", "R"});
+  fields.allow_only({"Q", "R", "feedforward"});
   LqrSettings settings;
   settings.Q = fields.diagonal_weight("Q", context.defaults.state_weights, Settings::Weight::positive_semidefinite);
   settings.R = fields.diagonal_weight("R", context.defaults.input_weights, Settings::Weight::positive_definite);
   settings.design_states = heli::kStateDim - 1;  // all but the bias state s
+  const FeedForward feedforward = read_feedforward(fields, FeedForward::none);
   if (context.settings_only) return nullptr;
   const Eigen::VectorXd& x0 = context.initial_state;
   if (x0.size() != heli::kStateDim) {
@@ -64,11 +79,25 @@ std::unique_ptr<Controller> make_lqr(const Settings& fields, const ControllerCon
                 std::to_string(heli::kStateDim));
   }
   const Trim trim = find_trim(model, TrimCondition::hover(-x0(heli::kZp), x0(heli::kPsi)));
-  return std::make_unique<LqrController>(model, operating_point(model, trim), std::move(settings));
+  if (feedforward == FeedForward::none)
+    return std::make_unique<LqrController>(model, operating_point(model, trim), std::move(settings));
+  // The gain of the hover design, flown on the error form around the hover trim (velocity) or
+  // around the trim of the commanded velocity (velocity+trim): u = u_r − K e.
+  const OperatingPoint hover = operating_point(model, trim);
+  const CareResult design = design_lqr(model, hover, settings.Q, settings.R, settings.design_states);
+  const Eigen::Index n = model.state_dim(), m = model.input_dim(), design_states = settings.design_states;
+  const OperatingPoint on_error{hover.state, Eigen::VectorXd::Zero(m), Eigen::VectorXd::Zero(n)};
+  return std::make_unique<FeedForwardController>(
+      error_form_of(context, feedforward, TrimPoint{trim.state, trim.input, Eigen::VectorXd::Zero(n)}),
+      [on_error, design, design_states](const SdcPlant& error_form) {
+        return std::make_unique<LqrController>(error_form, on_error, design, design_states);
+      });
 }
 
 const ControllerRegistration registration(
-    "lqr", "LQR at the hover trim, one fixed gain on V_track (Eq. 36) with the paper's Q and R; settings: Q, R",
+    "lqr",
+    "LQR at the hover trim, one fixed gain on V_track (Eq. 36) with the paper's Q and R; settings: Q, R, "
+    "feedforward (none|velocity|velocity+trim)",
     make_lqr);
 
 }  // namespace

@@ -40,6 +40,9 @@ class LqrController final : public Controller {
   // it must outlive the controller and its clones. Throws thetad::Error on settings that do not
   // fit the model or when the CARE has no stabilizing solution.
   LqrController(const SdcPlant& model, OperatingPoint point, LqrSettings settings);
+  // With a gain designed elsewhere (K of `design`, on the first design_states states): the
+  // feed-forward LQR flies on the error form a gain designed on the plant at its trim.
+  LqrController(const SdcPlant& model, OperatingPoint point, CareResult design, Eigen::Index design_states);
 
   std::string name() const override { return "lqr"; }
   std::unique_ptr<Controller> clone() const override { return std::make_unique<LqrController>(*this); }

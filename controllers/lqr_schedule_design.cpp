@@ -2,19 +2,18 @@
 
 #include <cmath>
 #include <numbers>
-#include <optional>
 #include <sstream>
 #include <type_traits>
 #include <utility>
 
 #include "core/error.hpp"
 #include "core/trim.hpp"
+#include "core/trim_sweep.hpp"
 
 namespace thetad {
 
 namespace {
 
-using RotorSpeedModel = heli::ModelOptions::RotorSpeedModel;
 constexpr double kDegree = std::numbers::pi / 180.0;
 constexpr double kMaxGridSpeed = 50.0;  // the simulator's divergence limit on |(u, v, w)|
 constexpr double kMaxGridClimb = 10.0;  // beyond it A4 has several roots and the flaps saturate
@@ -36,7 +35,7 @@ std::string list_problem(const std::vector<double>& values, double min, double m
 // The envelope's courses as the settings give them, in degrees: every 45°.
 std::vector<double> envelope_courses_deg() {
   std::vector<double> courses;
-  for (int course = 0; course < 360; course += 45) courses.push_back(course);
+  for (int j = 0; j < kEnvelopeCourses; ++j) courses.push_back(360.0 * j / kEnvelopeCourses);
   return courses;
 }
 
@@ -44,7 +43,7 @@ std::vector<double> envelope_courses_deg() {
 
 LqrScheduleGrid LqrScheduleGrid::envelope() {
   LqrScheduleGrid grid;
-  grid.speeds = {0.0, 1.0, 2.0, 3.0, 4.0, 6.0, 8.0, 10.0, 12.5, 15.0, 17.5, 20.0};
+  grid.speeds = envelope_speeds();
   for (const double course : envelope_courses_deg()) grid.courses.push_back(course * kDegree);
   grid.climb_rates = {-1.0, 0.0, 1.0};
   return grid;
@@ -127,79 +126,28 @@ std::string condition_text(const LqrSchedulePoint& point) {
   return text.str();
 }
 
-// A sweep up the speeds along one course and climb rate: the last trim is Ipopt's initial guess
-// for the next point, and A4's Ω falls monotonically with speed, so once the model's own rotor
-// model has no trim, faster points have none either.
-struct Sweep {
-  std::optional<Trim> guess;
-  bool own_model_has_trims = true;
-};
-
-// One grid point's trim, linearization and gain, with what every point of a table shares.
-class PointDesign {
- public:
-  PointDesign(const heli::Helicopter& model, const LqrScheduleTable& table)
-      : model_(model),
-        governor_(model.parameters(), governor_options(model)),
-        Q_(table.state_weights.asDiagonal()),
-        R_(table.input_weights.asDiagonal()),
-        design_states_(table.design_states),
-        altitude_(table.grid.altitude) {}
-
-  // The point at one flight condition; moves `sweep` on to it. Throws thetad::Error naming the
-  // point when neither rotor model has a trim there or the CARE has no stabilizing solution.
-  LqrSchedulePoint operator()(double speed, double course, double climb_rate, Sweep& sweep) const {
-    LqrSchedulePoint point;
-    point.speed = speed;
-    point.course = course;
-    point.climb_rate = climb_rate;
-    const TrimCondition condition = TrimCondition::straight(speed, course, climb_rate, altitude_);
-    const heli::Helicopter* plant = &model_;
-    std::optional<Trim> trim;
-    if (sweep.own_model_has_trims) {
-      try {
-        trim = find_trim(model_, condition, TrimOptions{.initial_guess = sweep.guess});
-      } catch (const Error&) {
-        sweep.own_model_has_trims = false;
-      }
-    }
-    if (!trim) {
-      plant = &governor_;
-      try {
-        trim = find_trim(governor_, condition, TrimOptions{.initial_guess = sweep.guess});
-      } catch (const Error& error) {
-        throw Error("lqr-scheduled: no trim at " + condition_text(point) + ": " + error.what());
-      }
-    }
-    point.rotor_speed_model = plant->options().rotor_speed_model;
-    point.rotor_speed = trim->rotor_speed;
-    point.residual = trim->residual;
-    point.point = operating_point(*plant, *trim);
-    try {
-      OperatingPoint linearized_at = point.point;
-      linearized_at.state = lqr_linearization_state(point.point.state);
-      point.K = design_lqr(*plant, linearized_at, Q_, R_, design_states_).K;
-    } catch (const Error& error) {
-      throw Error("lqr-scheduled: no LQR gain at " + condition_text(point) + ": " + error.what());
-    }
-    sweep.guess = std::move(trim);
-    return point;
+// One grid point's linearization and gain at its trim.
+LqrSchedulePoint design_point(const LqrScheduleTable& table, std::size_t i, std::size_t j, std::size_t k,
+                              const GridTrim& found) {
+  LqrSchedulePoint point;
+  point.speed = table.grid.speeds[i];
+  point.course = table.grid.courses[j];
+  point.climb_rate = table.grid.climb_rates[k];
+  point.rotor_speed_model = found.plant.options().rotor_speed_model;
+  point.rotor_speed = found.trim.rotor_speed;
+  point.residual = found.trim.residual;
+  point.point = operating_point(found.plant, found.trim);
+  try {
+    OperatingPoint linearized_at = point.point;
+    linearized_at.state = lqr_linearization_state(point.point.state);
+    point.K = design_lqr(found.plant, linearized_at, table.state_weights.asDiagonal(),
+                         table.input_weights.asDiagonal(), table.design_states)
+                  .K;
+  } catch (const Error& error) {
+    throw Error("no LQR gain at " + condition_text(point) + ": " + error.what());
   }
-
- private:
-  // Where A4 has no trim (high speed: Ω collapses, A-11) the point is designed with the governor.
-  static heli::ModelOptions governor_options(const heli::Helicopter& model) {
-    heli::ModelOptions options = model.options();
-    options.rotor_speed_model = RotorSpeedModel::governor;
-    return options;
-  }
-
-  const heli::Helicopter& model_;
-  const heli::Helicopter governor_;
-  const Eigen::MatrixXd Q_, R_;
-  const Eigen::Index design_states_;
-  const double altitude_;
-};
+  return point;
+}
 
 }  // namespace
 
@@ -216,28 +164,16 @@ LqrScheduleTable design_lqr_schedule(const heli::Helicopter& model, const LqrSch
   table.model_hash = model_hash(model);
   table.points.resize(grid.size());
 
-  const PointDesign design(model, table);
   std::size_t done = 0;
-  for (std::size_t k = 0; k < grid.climb_rates.size(); ++k) {
-    Sweep zero_speed;  // the first course's sweep at speed 0
-    for (std::size_t j = 0; j < grid.courses.size(); ++j) {
-      Sweep sweep{{}, model.options().rotor_speed_model != RotorSpeedModel::governor};
-      for (std::size_t i = 0; i < grid.speeds.size(); ++i) {
-        LqrSchedulePoint& point = table.points[table.index(i, j, k)];
-        if (grid.speeds[i] == 0.0 && j > 0) {
-          // At zero speed the course means nothing: one trim for every course keeps the blend
-          // continuous through the origin (where the course of the commanded velocity jumps).
-          point = table.points[table.index(i, 0, k)];
-          point.course = grid.courses[j];
-          sweep.guess = zero_speed.guess;
-          sweep.own_model_has_trims = sweep.own_model_has_trims && zero_speed.own_model_has_trims;
-        } else {
-          point = design(grid.speeds[i], grid.courses[j], grid.climb_rates[k], sweep);
-          if (grid.speeds[i] == 0.0) zero_speed = sweep;
-        }
-        if (progress) progress(++done, table.points.size(), point);
-      }
-    }
+  try {
+    sweep_trims(model, {grid.speeds, grid.courses, grid.climb_rates, grid.altitude},
+                [&](std::size_t i, std::size_t j, std::size_t k, const GridTrim& found) {
+                  LqrSchedulePoint& point = table.points[table.index(i, j, k)];
+                  point = design_point(table, i, j, k, found);
+                  if (progress) progress(++done, table.points.size(), point);
+                });
+  } catch (const Error& error) {
+    throw Error(std::string("lqr-scheduled: ") + error.what());
   }
   return table;
 }

@@ -9,7 +9,9 @@
 
 #include <Eigen/Geometry>
 
+#include "controllers/feedforward_controller.hpp"
 #include "controllers/registry.hpp"
+#include "core/grid_bracket.hpp"
 #include "core/error.hpp"
 #include "settings/settings.hpp"
 
@@ -19,39 +21,17 @@ namespace {
 
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
-// value ≈ (1 − weight) · grid[low] + weight · grid[high].
-struct Bracket {
-  std::size_t low = 0, high = 0;
-  double weight = 0.0;
-};
-
-// Clamped at the ends (no extrapolation of trims and gains beyond the envelope).
-Bracket bracket(const std::vector<double>& grid, double value) {
-  if (!(value > grid.front())) return {0, 0, 0.0};  // also NaN: the first point
-  if (value >= grid.back()) return {grid.size() - 1, grid.size() - 1, 0.0};
-  const std::size_t high = static_cast<std::size_t>(std::upper_bound(grid.begin(), grid.end(), value) - grid.begin());
-  return {high - 1, high, (value - grid[high - 1]) / (grid[high] - grid[high - 1])};
-}
-
-// Courses wrap: between the last course and the first one + 2π.
-Bracket periodic_bracket(const std::vector<double>& grid, double course) {
-  if (grid.size() == 1) return {0, 0, 0.0};
-  double c = std::fmod(course, kTwoPi);
-  if (c < 0.0) c += kTwoPi;
-  if (c >= grid.front() && c < grid.back()) return bracket(grid, c);
-  const double span = grid.front() + kTwoPi - grid.back();
-  const double past_last = c >= grid.back() ? c - grid.back() : c + kTwoPi - grid.back();
-  return {grid.size() - 1, 0, past_last / span};
-}
-
 }  // namespace
 
 LqrScheduledController::LqrScheduledController(const heli::Helicopter& model,
                                                std::shared_ptr<const LqrScheduleTable> table,
-                                               double velocity_time_constant)
+                                               double velocity_time_constant, FeedForward feedforward,
+                                               bool exact_velocity)
     : model_(&model),
       table_(std::move(table)),
       velocity_time_constant_(velocity_time_constant),
+      feedforward_(feedforward),
+      exact_velocity_(exact_velocity),
       v_(Eigen::VectorXd::Zero(heli::kStateDim)) {
   if (!(velocity_time_constant_ >= 0.0) || !std::isfinite(velocity_time_constant_)) {
     throw Error("lqr-scheduled: the velocity time constant must be finite and >= 0");
@@ -85,23 +65,18 @@ void LqrScheduledController::reset(const Eigen::VectorXd& x0, double) {
 
 void LqrScheduledController::schedule(double speed, double course, double climb_rate) {
   const LqrScheduleGrid& grid = table_->grid;
-  const Bracket s = bracket(grid.speeds, speed);
-  const Bracket c = periodic_bracket(grid.courses, course);
-  const Bracket h = bracket(grid.climb_rates, climb_rate);
+  const GridBracket s = bracket(grid.speeds, speed);
+  const GridBracket c = periodic_bracket(grid.courses, course);
+  const GridBracket h = bracket(grid.climb_rates, climb_rate);
   gain_.setZero();
   trim_input_.setZero();
   trim_tracking_.setZero();
-  for (int corner = 0; corner < 8; ++corner) {
-    const bool hi_s = corner & 1, hi_c = corner & 2, hi_h = corner & 4;
-    const double weight = (hi_s ? s.weight : 1.0 - s.weight) * (hi_c ? c.weight : 1.0 - c.weight) *
-                          (hi_h ? h.weight : 1.0 - h.weight);
-    if (weight == 0.0) continue;
-    const std::size_t index =
-        table_->index(hi_s ? s.high : s.low, hi_c ? c.high : c.low, hi_h ? h.high : h.low);
+  for_each_corner(s, c, h, [&](std::size_t i, std::size_t j, std::size_t k, double weight) {
+    const std::size_t index = table_->index(i, j, k);
     gain_.noalias() += weight * gains_[index];
     trim_input_.noalias() += weight * inputs_[index];
     trim_tracking_.noalias() += weight * tracking_[index];
-  }
+  });
   // The body velocities of V* are not blended: they are the commanded velocity (clamped to the
   // grid as the trims are) seen from the blended attitude, as at every trim (body = Rᵀ V_ned).
   // Blended linearly in course, the velocity would shrink between courses: at 45° between the 0°
@@ -111,6 +86,10 @@ void LqrScheduledController::schedule(double speed, double course, double climb_
   const double c_value = grid.courses.size() > 1 ? course : grid.courses.front();
   const Eigen::Vector3d velocity_ned(s_value * std::cos(c_value), s_value * std::sin(c_value),
                                      -std::clamp(climb_rate, grid.climb_rates.front(), grid.climb_rates.back()));
+  set_trim_body_velocity(velocity_ned);
+}
+
+void LqrScheduledController::set_trim_body_velocity(const Eigen::Vector3d& velocity_ned) {
   const Eigen::Matrix3d body_to_ned =
       (Eigen::AngleAxisd(trim_tracking_(heli::kTheta), Eigen::Vector3d::UnitY()) *
        Eigen::AngleAxisd(trim_tracking_(heli::kPhi), Eigen::Vector3d::UnitX()))
@@ -124,14 +103,22 @@ void LqrScheduledController::control(double t, const Eigen::Ref<const Eigen::Vec
   // period, through a first-order low pass (exact for a held input); zero at the first sample (the
   // scenarios start at rest). Not the measured velocity: V*'s velocity would then follow the
   // measurement and the velocity error, the damping of the loop, would vanish.
-  if (has_previous_ && t > previous_time_)
+  if (exact_velocity_) {
+    velocity_ = reference.velocity;
+  } else if (has_previous_ && t > previous_time_) {
     advance_scheduling_velocity(reference.position - previous_reference_, t - previous_time_, velocity_time_constant_,
                                 velocity_);
+  }
   previous_reference_ = reference.position;
   previous_time_ = t;
   has_previous_ = true;
   // Trims are at heading 0 = the paper's commanded heading: the heading frame is the NED frame.
-  schedule(std::hypot(velocity_.x(), velocity_.y()), std::atan2(velocity_.y(), velocity_.x()), -velocity_.z());
+  if (feedforward_ == FeedForward::velocity_trim) {
+    schedule(std::hypot(velocity_.x(), velocity_.y()), std::atan2(velocity_.y(), velocity_.x()), -velocity_.z());
+  } else {
+    schedule(0.0, 0.0, 0.0);
+    if (feedforward_ == FeedForward::velocity) set_trim_body_velocity(velocity_);
+  }
 
   model_->tracking_vector(measured_state, reference, v_);
   const DesignVector error = v_.head<kDesignStates>() - trim_tracking_;
@@ -146,7 +133,7 @@ void advance_scheduling_velocity(const Eigen::Vector3d& reference_step, double p
 }
 
 void check_lqr_envelope(const LqrScheduleGrid& grid, double velocity_time_constant, const ReferenceTrajectory& reference,
-                        double duration, double period) {
+                        double duration, double period, bool exact_velocity) {
   constexpr double kSlack = 1e-9;  // m/s, rad: rounding of the backward differences
   const auto where = [](double t, const Eigen::Vector3d& v) {
     char text[160];
@@ -159,7 +146,8 @@ void check_lqr_envelope(const LqrScheduleGrid& grid, double velocity_time_consta
   for (long long k = 1; k < samples; ++k) {
     const double t = static_cast<double>(k) * period;
     const Eigen::Vector3d position = reference.position(t);
-    advance_scheduling_velocity(position - previous, period, velocity_time_constant, velocity);
+    if (exact_velocity) velocity = reference.velocity(t);
+    else advance_scheduling_velocity(position - previous, period, velocity_time_constant, velocity);
     previous = position;
     const double speed = std::hypot(velocity.x(), velocity.y()), climb = -velocity.z();
     std::string problem;
@@ -174,8 +162,11 @@ void check_lqr_envelope(const LqrScheduleGrid& grid, double velocity_time_consta
       if (std::abs(off) > 1e-6) problem = "a course off the grid's only course";
     }
     if (!problem.empty()) {
-      throw Error("lqr-scheduled: " + where(t, velocity) + " (the reference's velocity low-passed with " +
-                  std::to_string(velocity_time_constant) + " s, as the controller schedules on it), " + problem +
+      const std::string source = exact_velocity ? "the reference's exact velocity"
+                                                : "the reference's velocity low-passed with " +
+                                                      std::to_string(velocity_time_constant) + " s";
+      throw Error("lqr-scheduled: " + where(t, velocity) + " (" + source + ", as the controller schedules on it), " +
+                  problem +
                   ": beyond it the controller would fly the trims and gains of another flight. Give a grid that "
                   "holds it (settings grid: speeds, courses_deg, climb_rates) or a longer velocity_time_constant");
     }
@@ -186,9 +177,13 @@ namespace {
 
 std::unique_ptr<Controller> make_lqr_scheduled(const Settings& fields, const ControllerContext& context) {
   const heli::Helicopter& model = helicopter_of(context, "lqr-scheduled");
-  fields.allow_only({"table", "grid", "Q", "R", "velocity_time_constant"});
+  fields.allow_only({"table", "grid", "Q", "R", "velocity_time_constant", "velocity_source", "feedforward"});
   const double time_constant = fields.number("velocity_time_constant",
                                              LqrScheduledController::kDefaultVelocityTimeConstant, 0.0, 60.0);
+  const bool exact = fields.choice("velocity_source", "filtered", {"filtered", "exact"}) == "exact";
+  const FeedForward feedforward = read_feedforward(fields, FeedForward::velocity_trim);
+  // Only velocity+trim schedules on the command: the other two fly the table's hover point.
+  const bool scheduled = feedforward == FeedForward::velocity_trim && context.reference;
   std::shared_ptr<LqrScheduleTable> table;
   if (fields.has("table")) {
     for (const char* designed : {"grid", "Q", "R"}) {
@@ -199,13 +194,14 @@ std::unique_ptr<Controller> make_lqr_scheduled(const Settings& fields, const Con
     const std::string file = fields.string("table", "");
     table = std::make_shared<LqrScheduleTable>(load_lqr_schedule(file));
     check_lqr_schedule_model(*table, model, file);
-    if (context.reference)
-      check_lqr_envelope(table->grid, time_constant, *context.reference, context.duration, context.controller_period);
+    if (scheduled)
+      check_lqr_envelope(table->grid, time_constant, *context.reference, context.duration, context.controller_period,
+                         exact);
   } else {
     const LqrScheduleGrid grid = read_lqr_grid(fields.block("grid"));
     // Before the design: a grid that cannot hold the flight fails now, not after seconds of trims.
-    if (context.reference)
-      check_lqr_envelope(grid, time_constant, *context.reference, context.duration, context.controller_period);
+    if (scheduled)
+      check_lqr_envelope(grid, time_constant, *context.reference, context.duration, context.controller_period, exact);
     const Eigen::VectorXd q =
         fields.diagonal_weight("Q", context.defaults.state_weights, Settings::Weight::positive_semidefinite).diagonal();
     const Eigen::VectorXd r =
@@ -213,13 +209,14 @@ std::unique_ptr<Controller> make_lqr_scheduled(const Settings& fields, const Con
     if (context.settings_only) return nullptr;
     table = std::make_shared<LqrScheduleTable>(design_lqr_schedule(model, grid, q, r));
   }
-  return std::make_unique<LqrScheduledController>(model, std::move(table), time_constant);
+  return std::make_unique<LqrScheduledController>(model, std::move(table), time_constant, feedforward, exact);
 }
 
 const ControllerRegistration registration(
     "lqr-scheduled",
     "LQR gain-scheduled over trims 0-20 m/s (course, climb), blended on the commanded velocity; settings: "
-    "table (a `thetad design-lqr` file) or grid, Q, R; velocity_time_constant",
+    "table (a `thetad design-lqr` file) or grid, Q, R; velocity_time_constant, velocity_source (filtered|exact), "
+    "feedforward (velocity+trim|velocity|none)",
     make_lqr_scheduled);
 
 }  // namespace

@@ -35,8 +35,9 @@ void advance_scheduling_velocity(const Eigen::Vector3d& reference_step, double p
 // will, and throws thetad::Error naming the first time and velocity that `grid` does not hold
 // (speed beyond its speeds, climb rate beyond its climb rates, a course off its only course):
 // there the controller would clamp to the grid's edge and fly trims of another flight.
+// With exact_velocity, the reference's own velocity is checked (no filter).
 void check_lqr_envelope(const LqrScheduleGrid& grid, double velocity_time_constant, const ReferenceTrajectory& reference,
-                        double duration, double period);
+                        double duration, double period, bool exact_velocity = false);
 
 class LqrScheduledController final : public Controller {
  public:
@@ -56,8 +57,15 @@ class LqrScheduledController final : public Controller {
   // Keeps a reference to the model (it must outlive the controller and its clones); clones share
   // the table. Throws thetad::Error when the table's sizes do not fit the helicopter or the time
   // constant is negative.
+  //
+  // feedforward (docs/model.md §7.1): velocity+trim (the default) schedules the gain and the trim
+  // V*, u* on the commanded velocity; velocity flies the table's hover point with V*'s body
+  // velocity the commanded one (in the hover trim's attitude frame); none flies the hover point
+  // alone, the hover LQR of this table. exact_velocity: the commanded velocity is the reference's
+  // exact one, not the low-passed backward difference of its position.
   LqrScheduledController(const heli::Helicopter& model, std::shared_ptr<const LqrScheduleTable> table,
-                         double velocity_time_constant = kDefaultVelocityTimeConstant);
+                         double velocity_time_constant = kDefaultVelocityTimeConstant,
+                         FeedForward feedforward = FeedForward::velocity_trim, bool exact_velocity = false);
 
   std::string name() const override { return "lqr-scheduled"; }
   std::unique_ptr<Controller> clone() const override { return std::make_unique<LqrScheduledController>(*this); }
@@ -74,14 +82,20 @@ class LqrScheduledController final : public Controller {
   const Gain& gain() const { return gain_; }
   const Input& trim_input() const { return trim_input_; }
   const DesignVector& trim_tracking() const { return trim_tracking_; }
+  FeedForward feedforward() const { return feedforward_; }
   // The (low-passed) commanded NED velocity the last control step scheduled on.
   const Eigen::Vector3d& scheduled_velocity() const { return velocity_; }
   const LqrScheduleTable& table() const { return *table_; }
 
  private:
+  // V*'s body velocities: the NED velocity seen from the blended trim attitude.
+  void set_trim_body_velocity(const Eigen::Vector3d& velocity_ned);
+
   const heli::Helicopter* model_;
   std::shared_ptr<const LqrScheduleTable> table_;
   double velocity_time_constant_;
+  FeedForward feedforward_;
+  bool exact_velocity_;
   // The table's points in fixed-size form, in the table's order (the hot path reads only these).
   std::vector<Gain> gains_;
   std::vector<DesignVector> tracking_;

@@ -15,6 +15,25 @@ ControllerContext::ControllerContext(const SdcPlant& plant, DesignDefaults defau
                                      double initial_time)
     : plant(plant), defaults(std::move(defaults)), initial_state(std::move(initial_state)), initial_time(initial_time) {}
 
+std::shared_ptr<const TrimSource> SharedTrims::get(const SdcPlant& plant, const ReferenceTrajectory& reference,
+                                                   double duration, double period) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  if (!designed_) {
+    source_ = plant.trim_source(reference, duration, period);
+    designed_ = true;
+  }
+  return source_;
+}
+
+std::shared_ptr<const TrimSource> ControllerContext::trims() const {
+  std::shared_ptr<const TrimSource> source =
+      reference ? shared_trims->get(plant, *reference, duration, controller_period)
+                : shared_trims->get(plant, FixedPosition(plant.tracked_position(initial_state)), 0.0, 1.0);
+  if (!source)
+    throw Error("feedforward velocity+trim: this plant has no trims (SdcPlant::trim_source); use none or velocity");
+  return source;
+}
+
 const heli::Helicopter& helicopter_of(const ControllerContext& context, const std::string& controller) {
   if (const auto* helicopter = dynamic_cast<const heli::Helicopter*>(&context.plant)) return *helicopter;
   throw Error(controller + ": flies only the X-Cell helicopter (heli::Helicopter), whose trims it is designed at; "

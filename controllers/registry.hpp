@@ -2,6 +2,7 @@
 
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,21 @@
 #include "settings/settings.hpp"
 
 namespace thetad {
+
+// The plant's trims along a flight's reference, designed by the first controller that asks and
+// then shared: every controller of a flight flies the same trims (docs/model.md §7.1).
+class SharedTrims {
+ public:
+  // The plant's trims along `reference` (SdcPlant::trim_source), designed at the first call; null
+  // when the plant has none.
+  std::shared_ptr<const TrimSource> get(const SdcPlant& plant, const ReferenceTrajectory& reference, double duration,
+                                        double period);
+
+ private:
+  std::mutex mutex_;
+  bool designed_ = false;
+  std::shared_ptr<const TrimSource> source_;
+};
 
 // What a controller is designed with: the plant it knows (for the helicopter the nominal
 // parameters, no wind: docs/model.md §11 ), the design defaults its settings start from and the initial
@@ -32,6 +48,13 @@ struct ControllerContext {
   // True when the caller only checks the settings (ControllerRegistry::check): a factory may then
   // return nullptr once it has read every field, skipping a costly design.
   bool settings_only = false;
+  // Where trims() keeps what it designed; a caller that builds several controllers for one flight
+  // gives them one (a Flight does).
+  std::shared_ptr<SharedTrims> shared_trims = std::make_shared<SharedTrims>();
+
+  // The plant's trims along the reference (a hold of the initial state's position without one),
+  // designed at the first call. Throws thetad::Error when the plant has no trims.
+  std::shared_ptr<const TrimSource> trims() const;
 
   // Keeps a reference to `plant`: it must outlive the context and the controllers built with it.
   ControllerContext(const SdcPlant& plant, Eigen::VectorXd initial_state, double initial_time = 0.0);

@@ -2,6 +2,7 @@
 
 #include <Eigen/Cholesky>
 
+#include "controllers/feedforward_controller.hpp"
 #include "controllers/registry.hpp"
 #include "settings/settings.hpp"
 #include "core/error.hpp"
@@ -132,7 +133,7 @@ std::vector<std::pair<std::string, double>> SdreController::counters() const {
 namespace {
 
 std::unique_ptr<Controller> make_sdre(const Settings& fields, const ControllerContext& context) {
-  fields.allow_only({"mode", "fixed_point_iterations", "Q", "R"});
+  fields.allow_only({"mode", "fixed_point_iterations", "Q", "R", "feedforward"});
   SdreSettings settings;
   settings.mode = fields.choice("mode", "warm", {"cold", "warm"}) == "warm" ? SdreSettings::Mode::warm
                                                                              : SdreSettings::Mode::cold;
@@ -143,14 +144,20 @@ std::unique_ptr<Controller> make_sdre(const Settings& fields, const ControllerCo
   const DesignDefaults& defaults = context.defaults;
   settings.Q = fields.diagonal_weight("Q", defaults.state_weights, Settings::Weight::positive_semidefinite);
   settings.R = fields.diagonal_weight("R", defaults.input_weights, Settings::Weight::positive_definite);
-  settings.initial_input = defaults.input;
+  const FeedForward feedforward = read_feedforward(fields, FeedForward::none);
+  // With the trim's input applied, the decision variable v = u − u_r starts from 0.
+  settings.initial_input =
+      feedforward == FeedForward::velocity_trim ? Eigen::VectorXd::Zero(defaults.input.size()) : defaults.input;
   if (context.settings_only) return nullptr;
-  return std::make_unique<SdreController>(context.plant, std::move(settings));
+  if (feedforward == FeedForward::none) return std::make_unique<SdreController>(context.plant, std::move(settings));
+  return std::make_unique<FeedForwardController>(
+      error_form_of(context, feedforward, zero_design_point(context.plant)),
+      [settings](const SdcPlant& error_form) { return std::make_unique<SdreController>(error_form, settings); });
 }
 
 const ControllerRegistration registration(
     "sdre", "state-dependent Riccati equation, one CARE per sample (Eq. 37); settings: mode (cold|warm), "
-            "fixed_point_iterations, Q, R",
+            "fixed_point_iterations, Q, R, feedforward (none|velocity|velocity+trim)",
     make_sdre);
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
+#include "controllers/feedforward_controller.hpp"
 #include "controllers/registry.hpp"
 #include "settings/settings.hpp"
 #include "core/error.hpp"
@@ -40,10 +41,12 @@ Eigen::VectorXd series_parameter(const char* what, const Eigen::VectorXd& given,
 // paper's weights (Eqs. 33–34) and u0 = [m g, 0, 0, 0, 0], the rotor at hover thrust on the
 // ground (docs/model.md §8.1).
 const ControllerRegistration registration(
-    "theta-d", "theta-D series T0 + ... + T_{N-1} around the initial state (docs/model.md §7, §8.1)",
+    "theta-d",
+    "theta-D series T0 + ... + T_{N-1} around the initial state (docs/model.md §7, §8.1); settings: terms, k, l, "
+    "fixed_point_iterations, fixed_point_tolerance, Q, R, feedforward (none|velocity|velocity+trim)",
     [](const Settings& settings, const ControllerContext& context) -> std::unique_ptr<Controller> {
       settings.allow_only({theta_d_keys::terms, theta_d_keys::k, theta_d_keys::l, "fixed_point_iterations",
-                           "fixed_point_tolerance", "Q", "R"});
+                           "fixed_point_tolerance", "Q", "R", "feedforward"});
       const DesignDefaults& defaults = context.defaults;
       ThetaDSettings s;
       // Bounded: each term is one more Lyapunov solve per pass and two more settings entries, so a
@@ -56,9 +59,15 @@ const ControllerRegistration registration(
       s.fixed_point_tolerance = settings.number("fixed_point_tolerance", s.fixed_point_tolerance, 0.0);
       s.Q = settings.diagonal_weight("Q", defaults.state_weights, Settings::Weight::positive_semidefinite);
       s.R = settings.diagonal_weight("R", defaults.input_weights, Settings::Weight::positive_definite);
-      s.initial_input = defaults.input;
+      const FeedForward feedforward = read_feedforward(settings, FeedForward::none);
+      // With the trim's input applied, the decision variable v = u − u_r starts from 0.
+      s.initial_input = feedforward == FeedForward::velocity_trim ? Eigen::VectorXd::Zero(defaults.input.size())
+                                                                  : defaults.input;
       if (context.settings_only) return nullptr;
-      return std::make_unique<ThetaDController>(context.plant, std::move(s));
+      if (feedforward == FeedForward::none) return std::make_unique<ThetaDController>(context.plant, std::move(s));
+      return std::make_unique<FeedForwardController>(
+          error_form_of(context, feedforward, zero_design_point(context.plant)),
+          [s](const SdcPlant& error_form) { return std::make_unique<ThetaDController>(error_form, s); });
     });
 
 }  // namespace

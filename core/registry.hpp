@@ -18,7 +18,9 @@ namespace thetad {
 //   2: Reference has the commanded velocity and acceleration, ReferenceTrajectory their exact
 //      values, SdcPlant the names of its states and inputs, its tracked states and its tracking
 //      vector on the true state.
-inline constexpr int kPluginInterfaceVersion = 2;
+//   3: SdcPlant's feed-forward hooks (bias_state, commanded_motion, trim_source) and
+//      ControllerContext's shared trims (docs/model.md §7.1).
+inline constexpr int kPluginInterfaceVersion = 3;
 
 // Where the registrations made while one lives come from: a plug-in being loaded ("plug-in
 // /path/lib.so (sha256 ...)"); "built-in" outside one. Inside one a refused registration is kept

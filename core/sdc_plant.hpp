@@ -1,11 +1,13 @@
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <Eigen/Core>
 
 #include "core/control_law.hpp"
+#include "core/feedforward.hpp"
 #include "core/log_column.hpp"
 
 namespace thetad {
@@ -81,6 +83,44 @@ class SdcPlant {
   // The states that Reference::position commands, in its order (at most three): a run's tracking
   // error is x[index] minus the command. None (the default) for a regulator.
   virtual std::vector<TrackedState> tracked_states() const { return {}; }
+
+  // Feed-forward (docs/model.md §7.1). The state that is constant 1 in the tracking vector (the
+  // helicopter's bias state s): the error form puts the reference and trim terms in its column of
+  // F. -1 (the default): the plant has none, and its controllers fly feedforward none only.
+  virtual int bias_state() const { return -1; }
+
+  // Overwrites in motion.state the entries that the reference commands at this sample: the
+  // tracked positions, their integrals and the plant's velocity states (in the plant's own frame,
+  // which may be the measured attitude's: hence `measured`), and in motion.rate their exact time
+  // derivatives along the reference and that frame. Leaves every other entry of both, and the
+  // input, as they are. Allocates nothing. The default commands nothing (a regulator).
+  virtual void commanded_motion(const Eigen::Ref<const Eigen::VectorXd>& measured, const Reference& reference,
+                                TrimPoint& motion) const {
+    (void)measured;
+    (void)reference;
+    (void)motion;
+  }
+
+  // The plant's trims along `reference`, for the `period` samples of `duration` s, designed now
+  // (the helicopter: a table of Ipopt trims over the velocities the reference commands). Null (the
+  // default): the plant has no trims, and no controller flies velocity+trim on it. Throws
+  // thetad::Error naming the time and the command where the reference leaves the plant's trims.
+  virtual std::shared_ptr<const TrimSource> trim_source(const ReferenceTrajectory& reference, double duration,
+                                                        double period) const {
+    (void)reference;
+    (void)duration;
+    (void)period;
+    return nullptr;
+  }
+
+  // The tracked states' values in x, in Reference::position's order (zeros beyond them): the
+  // command that holds the plant where it is.
+  Eigen::Vector3d tracked_position(const Eigen::Ref<const Eigen::VectorXd>& x) const {
+    Eigen::Vector3d position = Eigen::Vector3d::Zero();
+    const std::vector<TrackedState> tracked = tracked_states();
+    for (std::size_t i = 0; i < tracked.size(); ++i) position[static_cast<Eigen::Index>(i)] = x[tracked[i].index];
+    return position;
+  }
 
   // Names and units of the states and inputs in index order, for logs, plots and Python; the
   // defaults are x_0, x_1, ... and u_0, u_1, ... without units.

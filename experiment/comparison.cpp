@@ -36,27 +36,31 @@ std::string comparison_table(const std::vector<RunResult>& runs) {
   const std::string first = shape.inputs.empty() ? "" : "RMS " + shape.inputs.front().name;
   const std::string first_unit = shape.inputs.empty() ? "" : "(" + shape.inputs.front().unit + ")";
   std::string text;
-  append(text, "%-*s  %-22s", w, "", "");
+  append(text, "%-*s  %-22s %-13s", w, "", "", "");
   if (axes > 0) append(text, " %*s %*s", 9 * (axes + 1), ("RMS tracking error" + unit).c_str(), 9 * axes, ("max tracking error" + unit).c_str());
-  append(text, " %9s %9s %11s %17s\n", first.c_str(), shape.inputs.size() > 1 ? "RMS other" : "", "",
+  append(text, " %9s %9s %11s %11s %17s\n", first.c_str(), shape.inputs.size() > 1 ? "RMS other" : "", "", "",
          timing ? "in-flight us/step" : "");
-  append(text, "%-*s  %-22s", w, "controller", "status");
+  append(text, "%-*s  %-22s %-13s", w, "controller", "status", "information");
   if (axes > 0) {
     for (const auto& tracked : shape.tracked) append(text, "%9s", tracked.axis.c_str());
     append(text, "%9s ", "3-D");
     for (const auto& tracked : shape.tracked) append(text, "%9s", tracked.axis.c_str());
   }
-  append(text, " %9s %9s %11s %8s %8s\n", first_unit.c_str(), shape.inputs.size() > 1 ? "inputs" : "", "cost J",
-         timing ? "median" : "", timing ? "p99" : "");
+  append(text, " %9s %9s %11s %11s %8s %8s\n", first_unit.c_str(), shape.inputs.size() > 1 ? "inputs" : "", "J_dev",
+         "cost J", timing ? "median" : "", timing ? "p99" : "");
   for (const RunResult& run : runs) {
     const sim::RunSummary& s = run.summary;
-    append(text, "%-*s  %-22s", w, run.spec.label.c_str(), status_text(s).c_str());
+    append(text, "%-*s  %-22s %-13s", w, run.spec.label.c_str(), status_text(s).c_str(),
+           information_set(run).c_str());
     if (axes > 0) {
       for (Eigen::Index k = 0; k < s.rms_tracking_error.size(); ++k) append(text, "%9.4f", s.rms_tracking_error[k]);
       append(text, "%9.4f ", s.rms_tracking_error.norm());
       for (Eigen::Index k = 0; k < s.max_tracking_error.size(); ++k) append(text, "%9.4f", s.max_tracking_error[k]);
     }
-    append(text, " %9.4g %9.4f %11.4g", s.command_rms.size() > 0 ? s.command_rms[0] : 0.0, other_inputs_effort(s), s.cost);
+    append(text, " %9.4g %9.4f", s.command_rms.size() > 0 ? s.command_rms[0] : 0.0, other_inputs_effort(s));
+    if (s.cost_dev) append(text, " %11.4g", *s.cost_dev);
+    else append(text, " %11s", "-");
+    append(text, " %11.4g", s.cost);
     if (timing) append(text, " %8.1f %8.1f", s.compute_ns_median * 1e-3, s.compute_ns_p99 * 1e-3);
     text += "\n";
   }
@@ -86,6 +90,7 @@ nlohmann::ordered_json comparison_json(const Flight& flight, const std::vector<R
     j["runs"].push_back({{"label", runs[i].spec.label},
                          {"controller", runs[i].spec.controller},
                          {"status", sim::status_name(runs[i].summary.status)},
+                         {"information", information_set(runs[i])},
                          {"json", files[i].json.filename().string()},
                          {"json_sha256", sha256_of_file(files[i].json)}});
   }

@@ -136,11 +136,24 @@ void Flight::set_keep_log(bool keep) {
 
 std::size_t Flight::log_width() const { return sim::log_schema(*plant_, *make_disturbances()).size(); }
 
+std::optional<sim::DeviationCost> Flight::deviation_cost() const {
+  if (plant_->bias_state() < 0) return std::nullopt;
+  const std::shared_ptr<const TrimSource> trims =
+      trims_->get(*plant_, scenario_.trajectory, settings_.duration, settings_.controller_period());
+  if (!trims) return std::nullopt;
+  const DesignDefaults weights = plant_->design_defaults();
+  return sim::DeviationCost(*plant_, trims,
+                            {weights.state_weights, weights.input_weights,
+                             "the plant's design weights (the helicopter: the paper's Q, R, docs/model.md §7)"},
+                            settings_.controller_period());
+}
+
 PreparedController Flight::prepare(const ControllerSpec& spec) const {
   ControllerContext context(*plant_, initial_state_, 0.0);
   context.reference = &scenario_.trajectory;
   context.duration = settings_.duration;
   context.controller_period = settings_.controller_period();
+  context.shared_trims = trims_;
   BuiltController built = build_controller(spec, context);
   return {spec, std::move(built.controller), built.settings, {}};
 }
@@ -153,12 +166,14 @@ RunResult Flight::fly(PreparedController& prepared, Progress* progress, const st
       prepared.origin.empty() ? ControllerRegistry::instance().origin(prepared.spec.controller) : prepared.origin;
   result.provenance = provenance_;
   if (settings_.measure_compute_time) stamp_host_and_time(result.provenance);
+  std::optional<sim::DeviationCost> deviation = deviation_cost();
   if (progress) progress->start(heading.empty() ? prepared.spec.label + ":" : heading, settings_.duration);
   const auto start = std::chrono::steady_clock::now();
   const auto report = [progress](double t) { progress->update(t); };
   const std::unique_ptr<sim::Disturbances> disturbances = make_disturbances();
   sim::RunResult flown = sim::simulate(*prepared.controller, *disturbances, scenario_.trajectory, initial_state_, settings_,
-                                       progress ? std::function<void(double)>(report) : std::function<void(double)>());
+                                       progress ? std::function<void(double)>(report) : std::function<void(double)>(),
+                                       deviation ? &*deviation : nullptr);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   result.summary = std::move(flown.summary);
   result.log = std::move(flown.log);

@@ -7,6 +7,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "controllers/controller.hpp"
+#include "controllers/registry.hpp"
 #include "core/helicopter/helicopter.hpp"
 #include "core/sim/helicopter_disturbances.hpp"
 #include "experiment/controller_spec.hpp"
@@ -90,6 +91,9 @@ class Flight {
   };
   Flight() = default;
   Flight(const ScenarioText& source, const RunControls& controls);
+  // The score J_dev of one run (docs/model.md §7.2) on the flight's trims; none for a plant
+  // without trims.
+  std::optional<sim::DeviationCost> deviation_cost() const;
   // The columns of a run's log: what SimulationSettings::check_memory needs.
   std::size_t log_width() const;
 
@@ -99,6 +103,8 @@ class Flight {
   Eigen::VectorXd initial_state_;
   std::shared_ptr<const SdcPlant> plant_;
   const heli::Helicopter* helicopter_ = nullptr;  // plant_ when it is the helicopter
+  // The trims every controller of this flight that asks for them shares (designed at the first ask).
+  std::shared_ptr<SharedTrims> trims_ = std::make_shared<SharedTrims>();
 };
 
 }  // namespace thetad

@@ -76,6 +76,11 @@ std::vector<LogColumn> log_columns(const std::vector<LogColumn>& schema, bool ti
   return columns;
 }
 
+std::string information_set(const RunResult& result) {
+  const YAML::Node feedforward = result.settings.IsMap() ? result.settings["feedforward"] : YAML::Node();
+  return feedforward && feedforward.IsScalar() ? feedforward.as<std::string>() : "own";
+}
+
 std::string status_text(const sim::RunSummary& summary) {
   if (summary.status == sim::RunStatus::completed) return "completed";
   char text[64];
@@ -123,6 +128,12 @@ Json summary_json(const sim::RunSummary& summary) {
                 "J = 1/2 sum_k (V_track' Q V_track + u_cmd' R u_cmd) T_c, Eq. 32 with Q, R of Eqs. 33-34, "
                 "true V_track"},
                {"J", summary.cost}};
+  j["cost_dev"] = {{"definition",
+                    "J_dev = 1/2 sum_k (e' Q e + (u_cmd - u_r)' R (u_cmd - u_r)) T_c, e the true state's deviation "
+                    "from the commanded motion and its trim, u_r the trim's input (docs/model.md §7.2); one Q, R for "
+                    "every controller"},
+                   {"weights", summary.cost_dev ? Json(summary.cost_dev_weights) : Json(nullptr)},
+                   {"J_dev", summary.cost_dev ? Json(*summary.cost_dev) : Json(nullptr)}};
   if (summary.settings.measure_compute_time) {
     j["compute_time_ns"] = {{"note", "wall time of each control() call inside the flight, with the simulation "
                                      "around it: noisy; thetad bench measures the per-step cost"},
@@ -140,6 +151,7 @@ Json result_json(const RunResult& result, const LogFile* log) {
   j["label"] = result.spec.label;
   j["controller"] = result.spec.controller;
   j["controller_origin"] = result.controller_origin;
+  j["information"] = information_set(result);
   j.update(summary_json(result.summary));
   j["controller_settings"] = yaml_to_json(result.settings);
   j["settings_source"] = result.spec.settings_source;

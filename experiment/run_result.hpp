@@ -25,6 +25,11 @@ struct RunResult {
   bool completed() const { return summary.status == sim::RunStatus::completed; }
 };
 
+// What the controller took from the reference (docs/model.md §7.1): its `feedforward` setting as
+// flown (none, velocity, velocity+trim) for the built-in controllers, "own" for a controller
+// without that setting (a plug-in, a Python controller: what it uses is its own).
+std::string information_set(const RunResult& result);
+
 // "completed", "diverged at 16.200 s" or "failed at 3.000 s".
 std::string status_text(const sim::RunSummary& summary);
 

@@ -24,16 +24,18 @@ import campaign_stats  # noqa: E402
 import plot_campaign  # noqa: E402
 
 FORMAT = "thetad-campaign-1"
+FORMAT_VERSION = "2"  # J_dev (cost_dev) and the information set of each run
 # The figures summarized per controller and cell: column, what it is, unit.
 FIGURES = [
     ("rms_error_m", "RMS position error", "m"),
     ("max_error_m", "max position error", "m"),
+    ("cost_dev", "J_dev (deviations from the trim)", ""),
     ("cost", "cost J", ""),
     ("effort_thrust_N", "thrust effort (RMS)", "N"),
     ("compute_us_mean", "compute time per step", "us"),
 ]
 # The figures compared in pairs (timing is not: it is not paired by the draw).
-PAIRED = ["rms_error_m", "max_error_m", "cost"]
+PAIRED = ["rms_error_m", "max_error_m", "cost_dev", "cost"]
 
 
 def read_campaign(database):
@@ -41,6 +43,10 @@ def read_campaign(database):
         meta = dict(connection.execute("SELECT key, value FROM meta").fetchall())
         if meta.get("format") != FORMAT:
             raise SystemExit(f"{database}: not a thetad campaign database ({FORMAT})")
+        version = meta.get("format_version", "1")
+        if version != FORMAT_VERSION:
+            raise SystemExit(f"{database}: a campaign database of format_version {version}, written by another "
+                             f"thetad; this report reads version {FORMAT_VERSION}: run the campaign anew")
         runs = pd.read_sql("SELECT * FROM runs ORDER BY run_index", connection)
     return meta, runs
 
@@ -62,6 +68,7 @@ def controller_rows(runs, controllers, swept):
             "cell_label": cell_label(group.iloc[0], swept),
             "factors": {name: float(group.iloc[0][name]) for name in swept},
             "controller": label,
+            "information": ", ".join(sorted(set(group.information))),
             "runs": int(len(group)),
             "completed": int(len(completed)),
             "completion_rate": len(completed) / len(group),

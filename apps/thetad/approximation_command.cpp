@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "controllers/feedforward_controller.hpp"
 #include "controllers/sdre.hpp"
 #include "controllers/theta_d.hpp"
 #include "core/atomic_file.hpp"
@@ -43,10 +44,10 @@ int run_approximation(const ApproximationArguments& a) {
 
   Progress progress(Progress::mode_for_stderr(a.flight.quiet));
   const auto start = std::chrono::steady_clock::now();
-  const auto& sdre_controller = dynamic_cast<const SdreController&>(*sdre.controller);
+  const auto& sdre_controller = paper_form<SdreController>(*sdre.controller, "thetad approximation");
   const tuning::TuningRecord record =
       tuning::record_sdre_flight(flight, sdre_controller, a.every, a.threads, &progress, theta_d.controller.get());
-  auto& series = dynamic_cast<ThetaDController&>(*theta_d.controller);
+  auto& series = paper_form<ThetaDController>(*theta_d.controller, "thetad approximation");
   series.reset(flight.initial_state(), 0.0);
   const tuning::ApproximationError error = tuning::approximation_error(sdre_controller, series, record, a.threads);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

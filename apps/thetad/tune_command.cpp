@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <optional>
 
+#include "controllers/feedforward_controller.hpp"
 #include "controllers/sdre.hpp"
 #include "controllers/theta_d.hpp"
 #include "core/atomic_file.hpp"
@@ -128,13 +129,13 @@ tuning::FitResult search(const TuneArguments& a, const Flight& flight, const YAM
     return fit;
   }
   const PreparedController sdre = flight.prepare(parse_controller_spec("sdre", settings, a.flight.settings.string()));
-  const auto& sdre_controller = dynamic_cast<const SdreController&>(*sdre.controller);
+  const auto& sdre_controller = paper_form<SdreController>(*sdre.controller, "thetad tune");
   const tuning::TuningRecord record = reused ? *reused : fly_record(a, flight, sdre_controller, progress);
   report.samples = record.size();
   report.record_reused = reused.has_value();
   // The θ–D starts where the recorded flight started: A0, g0, T0 at the scenario's x0, t0 = 0.
   PreparedController theta_d = flight.prepare(tuning::theta_d_spec(base, "theta-d", a.terms, {}, {}));
-  auto& series = dynamic_cast<ThetaDController&>(*theta_d.controller);
+  auto& series = paper_form<ThetaDController>(*theta_d.controller, "thetad tune");
   series.reset(flight.scenario().initial_state, 0.0);
   const auto setup = Clock::now();
   const auto samples = static_cast<double>(record.size());

@@ -58,6 +58,13 @@ class Helicopter final : public SdcPlant {
                             const Eigen::Vector3d& error_integral, Eigen::Ref<Eigen::VectorXd> v) const override;
   // x_p, y_p, z_p, commanded by x_c, y_c, z_c (m).
   std::vector<TrackedState> tracked_states() const override;
+  // Feed-forward (docs/model.md §7.1): the bias state s, the commanded position, body velocity (in
+  // the measured attitude's frame) and integrals, and the trim table (core/trim_table.hpp).
+  int bias_state() const override { return kS; }
+  void commanded_motion(const Eigen::Ref<const Eigen::VectorXd>& measured, const Reference& reference,
+                        TrimPoint& motion) const override;
+  std::shared_ptr<const TrimSource> trim_source(const ReferenceTrajectory& reference, double duration,
+                                                double period) const override;
   // The 18 states and 5 inputs by their names in docs/model.md §1 (x_p ... s; T_mr ... delta_lat).
   std::vector<LogColumn> state_columns() const override;
   std::vector<LogColumn> input_columns() const override;

@@ -1,3 +1,6 @@
+#include <Eigen/Geometry>
+
+#include "core/helicopter/forces.hpp"
 #include "core/helicopter/helicopter.hpp"
 
 namespace thetad::heli {
@@ -23,6 +26,26 @@ void Helicopter::true_tracking_vector(const Eigen::Ref<const Eigen::VectorXd>& x
 
 std::vector<TrackedState> Helicopter::tracked_states() const {
   return {{kXp, "x", {"x_c", "m"}}, {kYp, "y", {"y_c", "m"}}, {kZp, "z", {"z_c", "m"}}};
+}
+
+}  // namespace thetad::heli
+
+namespace thetad::heli {
+
+// The commanded velocity is held in the body frame of the measured attitude, b = R(Θ)ᵀ v_c, so the
+// velocity error u − b is the inertial velocity error seen from the body; its rate
+// Rᵀ a_c − ω × b follows from Ṙ = R [ω]× (docs/model.md §7.1).
+void Helicopter::commanded_motion(const Eigen::Ref<const Eigen::VectorXd>& measured, const Reference& reference,
+                                  TrimPoint& motion) const {
+  const Eigen::Matrix3d rotation = air_data(environment(), measured).rotation;
+  const Eigen::Vector3d body_velocity = rotation.transpose() * reference.velocity;
+  const Eigen::Vector3d rates = measured.segment<3>(kP);
+  motion.state.segment<3>(kXp) = reference.position;
+  motion.state.segment<3>(kU) = body_velocity;
+  motion.state.segment<3>(kXi) = reference.integral;
+  motion.rate.segment<3>(kXp) = reference.velocity;
+  motion.rate.segment<3>(kU) = rotation.transpose() * reference.acceleration - rates.cross(body_velocity);
+  motion.rate.segment<3>(kXi) = reference.position;
 }
 
 }  // namespace thetad::heli

@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <exception>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -54,6 +55,10 @@ struct RunSummary {
   // the true state (SdcPlant::true_tracking_vector; the helicopter's V_track of Eq. 36, Eq. 32)
   // and u the commanded input, by left rectangles at the controller rate.
   double cost = 0.0;
+  // J_dev (sim::DeviationCost, docs/model.md §7.2) and what its weights are; none for a plant
+  // without trims.
+  std::optional<double> cost_dev;
+  std::string cost_dev_weights;
   // Wall time of the control() call per sample (ns); 0 when not measured.
   double compute_ns_mean = 0.0;
   double compute_ns_median = 0.0;

@@ -92,7 +92,7 @@ std::vector<LogColumn> log_schema(const SdcPlant& plant, const Disturbances& dis
 
 RunResult simulate(ControlLaw& law, Disturbances& disturbances, const ReferenceTrajectory& reference,
                    const Eigen::VectorXd& x0, const SimulationSettings& settings,
-                   const std::function<void(double t)>& progress) {
+                   const std::function<void(double t)>& progress, DeviationCost* deviation) {
   settings.validate();
   std::mt19937_64 rng(settings.seed);
   const SdcPlant& plant = disturbances.start(rng);
@@ -161,6 +161,7 @@ RunResult simulate(ControlLaw& law, Disturbances& disturbances, const ReferenceT
     tracking_error(tracked, x, now.position, error, padded_error);
     plant.true_tracking_vector(x, now, true_error_integral.value, v);
     metrics.add(error, v, command, elapsed_ns);
+    if (deviation) deviation->add(x, now, v, command);
     if (settings.keep_log && k % settings.log_every == 0)
       append_row(t, tracked, now.position, x, measured, command, applied, disturbances, elapsed_ns, result.log);
 
@@ -178,6 +179,10 @@ RunResult simulate(ControlLaw& law, Disturbances& disturbances, const ReferenceT
     summary.end_time = static_cast<double>(samples) * period;
   }
   metrics.finish(summary);
+  if (deviation) {
+    summary.cost_dev = deviation->value();
+    summary.cost_dev_weights = deviation->weights().name;
+  }
   disturbances.finish(summary);
   summary.controller_counters = law.counters();
   return result;

@@ -8,6 +8,7 @@
 
 #include "core/control_law.hpp"
 #include "core/log_column.hpp"
+#include "core/sim/deviation_cost.hpp"
 #include "core/sim/disturbances.hpp"
 #include "core/sim/run_log.hpp"
 #include "core/sim/run_summary.hpp"
@@ -42,8 +43,9 @@ inline LogColumn step_time_column() { return {"compute", "ns"}; }
 // wrongly sized x0. `progress`, when given, is called with the simulated time every
 // kProgressSamples controller samples (progress displays).
 inline constexpr std::int64_t kProgressSamples = 100;
+// `deviation`, when given, scores the run (J_dev) at every controller sample.
 RunResult simulate(ControlLaw& law, Disturbances& disturbances, const ReferenceTrajectory& reference,
                    const Eigen::VectorXd& x0, const SimulationSettings& settings,
-                   const std::function<void(double t)>& progress = {});
+                   const std::function<void(double t)>& progress = {}, DeviationCost* deviation = nullptr);
 
 }  // namespace thetad::sim

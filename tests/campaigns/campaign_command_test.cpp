@@ -117,7 +117,8 @@ TEST_F(CampaignCommand, TheReportWritesTablesJsonAndFiguresOfA2dSweep) {
   const auto json = nlohmann::json::parse(testing::read_text(folder / "report.json"));
   EXPECT_EQ(json.at("runs_stored"), 24);
   EXPECT_EQ(json.at("controllers").size(), 8u);  // 4 cells x 2 controllers
-  EXPECT_EQ(json.at("paired").size(), 12u);      // 4 cells x 3 figures
+  EXPECT_EQ(json.at("paired").size(), 16u);      // 4 cells x 4 figures
+  EXPECT_EQ(json.at("controllers")[0].at("information"), "none");
   EXPECT_EQ(json.at("statistics").at("bootstrap").at("seed"), 4);
   ASSERT_EQ(json.at("provenance").size(), 1u);  // one scenario
   EXPECT_EQ(json.at("provenance")[0].at("scenario").at("name"), "scenario-1");

@@ -1,6 +1,9 @@
 #include "campaigns/campaign_runner.hpp"
 
+#include <sqlite3.h>
+
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <iterator>
 #include <map>
@@ -59,6 +62,8 @@ TEST_F(CampaignRunner, TheDatabaseIsTheSameForAnyNumberOfWorkersAndShards) {
   EXPECT_EQ(expected[1].controller, "td");
   EXPECT_EQ(expected[6].factors, (FactorValues{{"uncertainty_scale", 2.0}, {"duration", 0.2}}));
   EXPECT_NE(expected[0].metrics[8], expected[6].metrics[8]);  // the cells differ in cost
+  EXPECT_TRUE(std::isfinite(expected[0].metrics[9]));          // J_dev: the helicopter has trims
+  EXPECT_EQ(expected[0].information, "none");
 
   run_campaign(c, options("two", 2));
   expect_same_runs(expected, stored_records(options("two", 2).out));
@@ -101,6 +106,26 @@ TEST_F(CampaignRunner, ResumeFliesOnlyWhatIsMissingAndRefusesAnotherCampaign) {
     FAIL() << "resumed another campaign";
   } catch (const Error& error) {
     EXPECT_THAT(error.what(), HasSubstr("holds another campaign"));
+  }
+}
+
+TEST_F(CampaignRunner, ResumeRefusesADatabaseOfAnEarlierFormatVersion) {
+  const Campaign c = campaign();
+  CampaignOptions first = options("earlier", 1);
+  first.shard = Shard{1, 2};
+  run_campaign(c, first);
+  // What a database of format_version 1 looks like to this thetad: no format_version in meta.
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(store_file(first.out).c_str(), &db), SQLITE_OK);
+  ASSERT_EQ(sqlite3_exec(db, "DELETE FROM meta WHERE key = 'format_version'", nullptr, nullptr, nullptr), SQLITE_OK);
+  sqlite3_close(db);
+  first.resume = true;
+  try {
+    run_campaign(c, first);
+    FAIL() << "resumed a database of an earlier format";
+  } catch (const Error& error) {
+    EXPECT_THAT(error.what(), HasSubstr("format_version 1"));
+    EXPECT_THAT(error.what(), HasSubstr("run the campaign anew"));
   }
 }
 

@@ -14,6 +14,7 @@
 #include <Eigen/Core>
 #include <yaml-cpp/yaml.h>
 
+#include "controllers/feedforward_controller.hpp"
 #include "controllers/sdre.hpp"
 #include "core/sim/recording_law.hpp"
 #include "tests/controllers/scenario_one_flight.hpp"
@@ -105,7 +106,8 @@ TEST_P(ControlStepAllocations, AreExactlyZeroOver1000Steps) {
   EXPECT_EQ(counts.heap, 0) << label;
   // The warm SDRE's count is of its Newton–Kleinman steps only if none fell back to the cold solve,
   // and the cold SDRE's of the matrix sign path only if no solve failed: so it was on these states.
-  if (const auto* sdre = dynamic_cast<const SdreController*>(controller.get())) {
+  const auto* wrapper = dynamic_cast<const FeedForwardController*>(controller.get());
+  if (const auto* sdre = dynamic_cast<const SdreController*>(wrapper ? &wrapper->inner() : controller.get())) {
     EXPECT_EQ(sdre->fallback_count(), 0);
     EXPECT_EQ(sdre->failure_count(), 0);
   }
@@ -114,7 +116,11 @@ TEST_P(ControlStepAllocations, AreExactlyZeroOver1000Steps) {
 INSTANTIATE_TEST_SUITE_P(BuiltIn, ControlStepAllocations,
                          ::testing::Values(Case{"theta_d", "theta-d", "{}"}, Case{"sdre_warm", "sdre", "{mode: warm}"},
                                            Case{"sdre_cold", "sdre", "{mode: cold}"}, Case{"lqr", "lqr", "{}"},
-                                           Case{"lqr_scheduled", "lqr-scheduled", "{}"}),
+                                           Case{"lqr_scheduled", "lqr-scheduled", "{}"},
+                                           Case{"theta_d_velocity_trim", "theta-d", "{feedforward: velocity+trim}"},
+                                           Case{"sdre_warm_velocity", "sdre", "{feedforward: velocity}"},
+                                           Case{"lqr_velocity_trim", "lqr", "{feedforward: velocity+trim}"},
+                                           Case{"lqr_scheduled_exact", "lqr-scheduled", "{velocity_source: exact}"}),
                          [](const auto& info) { return std::string(info.param.label); });
 
 }  // namespace

@@ -185,7 +185,8 @@ TEST(ControllerRegistry, TheSettingsAsUsedHoldEveryFieldGivenOrDefault) {
             std::vector<double>(defaults.state_weights.begin(), defaults.state_weights.end()));
   EXPECT_EQ(theta_d["R"].as<std::vector<double>>(),
             std::vector<double>(defaults.input_weights.begin(), defaults.input_weights.end()));
-  EXPECT_EQ(theta_d.size(), 7u);
+  EXPECT_EQ(theta_d["feedforward"].as<std::string>(), "none");
+  EXPECT_EQ(theta_d.size(), 8u);
 
   const YAML::Node scheduled =
       registry.build("lqr-scheduled", YAML::Load("grid: {speeds: [0, 2], courses_deg: [90]}"), hover_context(model))
