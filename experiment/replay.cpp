@@ -47,6 +47,8 @@ RunControls controls_of(const Json& settings, const Json& provenance) {
   controls.induced_velocity_noise = noise.at("induced_velocity").get<bool>();
   // Results written before the actuator limits existed flew without them.
   controls.actuator_limits = settings.contains("actuator_limits") && settings["actuator_limits"].at("enabled").get<bool>();
+  // Results written before the anti-windup existed flew without it.
+  controls.anti_windup = settings.contains("actuator_limits") && settings["actuator_limits"].value("anti_windup", false);
   // Files written before the disturbance scales existed flew at the paper's strengths.
   controls.uncertainty_scale = settings.value("uncertainty_scale", 1.0);
   controls.noise_scale = noise.value("scale", 1.0);

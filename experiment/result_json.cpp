@@ -46,6 +46,7 @@ Json settings_json(const sim::SimulationSettings& s) {
                             {"max_ground_penetration_m", s.limits.max_ground_penetration}};
   const auto channels = [](const sim::InputVector& v) { return Json::array({v[0], v[1], v[2], v[3], v[4]}); };
   j["actuator_limits"] = {{"enabled", s.actuator_limits.enabled},
+                          {"anti_windup", s.actuator_limits.anti_windup},
                           {"channels", {"T_mr_N", "delta_ped_rad", "delta_col_rad", "delta_lon_rad", "delta_lat_rad"}},
                           {"lower", channels(s.actuator_limits.lower)},
                           {"upper", channels(s.actuator_limits.upper)},

@@ -60,6 +60,7 @@ void apply(const RunControls& controls, sim::SimulationSettings& settings) {
   set(controls.wind_noise, settings.noise.wind_component);
   set(controls.induced_velocity_noise, settings.noise.induced_velocity);
   set(controls.actuator_limits, settings.actuator_limits.enabled);
+  set(controls.anti_windup, settings.actuator_limits.anti_windup);
   const auto scale = [](const char* name, const std::optional<double>& given, double& value) {
     if (!given) return;
     if (!(*given >= 0.0) || !std::isfinite(*given))

@@ -22,6 +22,7 @@ struct RunControls {
   std::optional<bool> parameter_uncertainty, wind_gust, measurement_noise, actuator_noise, wind_noise,
       induced_velocity_noise;
   std::optional<bool> actuator_limits;   // servo magnitude and rate limits (sim::ActuatorLimits)
+  std::optional<bool> anti_windup;       // conditional integration of the position integrals at the limits
   // Strengths of the disturbances (campaign sweeps): multipliers of the paper's setting.
   std::optional<double> uncertainty_scale;  // Table 1's parameter bounds (0 nominal, 1 the paper's)
   std::optional<double> noise_scale;        // every sensor, actuator, wind and induced-velocity noise level

@@ -38,10 +38,11 @@ RunControls run_controls(const py::kwargs& keywords) {
     else if (name == "wind_noise") controls.wind_noise = flag(value);
     else if (name == "induced_velocity_noise") controls.induced_velocity_noise = flag(value);
     else if (name == "actuator_limits") controls.actuator_limits = flag(value);
+    else if (name == "anti_windup") controls.anti_windup = flag(value);
     else
       throw py::type_error("unknown run control '" + name +
                            "' (seed, duration, dt, log_every, summary_only, timing, ideal, parameter_uncertainty, "
-                           "wind_gust, measurement_noise, actuator_noise, wind_noise, induced_velocity_noise, actuator_limits)");
+                           "wind_gust, measurement_noise, actuator_noise, wind_noise, induced_velocity_noise, actuator_limits, anti_windup)");
   }
   return controls;
 }
@@ -153,7 +154,7 @@ void bind_flights(py::module_& module) {
       py::arg("scenario"), py::arg("controller"), py::kw_only(), py::arg("label") = py::none(),
       "Flies `controller` (a registered name or spec string, thetad.controller(...), or a thetad.Controller "
       "subclass instance) through `scenario` (a file or a shipped scenario's name). Run controls as keywords: "
-      "seed, duration, dt, log_every, summary_only, timing, ideal, the disturbance switches and actuator_limits.");
+      "seed, duration, dt, log_every, summary_only, timing, ideal, the disturbance switches, actuator_limits and anti_windup.");
 
   module.def(
       "compare",

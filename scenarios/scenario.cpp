@@ -200,13 +200,14 @@ void read_simulation(const YAML::Node& root, Scenario& scenario) {
   const YAML::Node node = child(root, "simulation");
   const Settings simulation(node, "simulation");
   simulation.allow_only({"duration", "dt", "controller_period_steps", "log_every", "summary_only", "timing", "seed",
-                         "actuator_limits", "disturbances", "model"});
+                         "actuator_limits", "anti_windup", "disturbances", "model"});
   if (simulation.has("duration")) scenario.simulation_duration = positive(simulation, "duration");
   if (simulation.has("dt")) scenario.dt = positive(simulation, "dt");
   if (simulation.has("log_every")) scenario.log_every = simulation.integer("log_every", 1, 1);
   scenario.summary_only = optional_boolean(simulation, "summary_only");
   scenario.timing = optional_boolean(simulation, "timing");
   scenario.actuator_limits = optional_boolean(simulation, "actuator_limits");
+  scenario.anti_windup = optional_boolean(simulation, "anti_windup");
   if (simulation.has("controller_period_steps")) {
     scenario.controller_period_steps = simulation.integer("controller_period_steps", 1, 1);
   } else if (scenario.dt) {
@@ -287,6 +288,7 @@ sim::SimulationSettings Scenario::simulation_settings(sim::SimulationSettings ba
   if (seed) base.seed = *seed;
   // The paper has no actuator limits: its literal preset flies without them unless the file says.
   base.actuator_limits.enabled = actuator_limits.value_or(model_preset != "paper" && base.actuator_limits.enabled);
+  if (anti_windup) base.actuator_limits.anti_windup = *anti_windup;
   if (parameter_uncertainty) base.parameter_uncertainty = *parameter_uncertainty;
   if (wind_gust) base.wind_gust.enabled = *wind_gust;
   if (measurement_noise) base.noise.measurement = *measurement_noise;

@@ -40,6 +40,7 @@ struct Scenario {
   std::optional<int> controller_period_steps;
   std::optional<std::uint64_t> seed;
   std::optional<bool> actuator_limits;  // default: the base's; always off with the paper-literal preset
+  std::optional<bool> anti_windup;      // default: the base's (on)
   std::optional<bool> parameter_uncertainty;
   std::optional<bool> wind_gust;
   std::optional<bool> measurement_noise;

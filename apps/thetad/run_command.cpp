@@ -130,6 +130,12 @@ void add_flight_options(CLI::App& command, FlightOptions& options, bool scenario
           "Servo magnitude and rate limits on the applied input: on|off (default: the scenario's, else on; "
           "docs/model.md §12)")
       ->check(CLI::IsMember({"on", "off"}));
+  command
+      .add_option_function<std::string>(
+          "--anti-windup", [&options](const std::string& text) { options.controls.anti_windup = text == "on"; },
+          "With the actuator limits, hold the position-error integrals at samples where a limit acts: on|off "
+          "(default: the scenario's, else on; docs/model.md §12)")
+      ->check(CLI::IsMember({"on", "off"}));
   command.add_option_function<double>(
       "--duration", [&options](double value) { options.controls.duration = value; },
       "Simulated seconds to fly (default: the scenario's)");

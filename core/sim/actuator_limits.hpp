@@ -16,6 +16,11 @@ using InputVector = Eigen::Matrix<double, heli::kInputDim, 1>;
 // applies them to the input the plant receives (after actuator noise), so no controller is told.
 struct ActuatorLimits {
   bool enabled = true;
+  // Anti-windup by conditional integration, the same for every controller (docs/model.md §12): at a
+  // controller sample whose applied input a magnitude bound held, the position-error integral the
+  // controllers see is held (the command's integral advances by the measured position, not by the
+  // command). Acts only with the limits enabled.
+  bool anti_windup = true;
   InputVector lower, upper;  // N, rad, rad, rad, rad
   InputVector rate;          // N/s, rad/s, ...
 
@@ -50,6 +55,8 @@ class ActuatorLimiter {
   void apply(Eigen::Ref<Eigen::VectorXd> input);
   // Bit k set: channel k was at a magnitude bound in the last apply(); bit k + 5: rate-limited.
   unsigned last_flags() const { return last_flags_; }
+  // Whether the last apply() held a channel at a magnitude bound (not only slowed it).
+  bool at_magnitude_bound() const { return (last_flags_ & ((1u << heli::kInputDim) - 1u)) != 0; }
   const SaturationCounts& counts() const { return counts_; }
 
  private:

@@ -40,6 +40,10 @@ class Disturbances {
   // Why the state x at time t counts as diverged, or nothing.
   virtual std::optional<std::string> check(const Eigen::VectorXd& x, double t) const = 0;
   // The log columns this object adds after the applied input, and their values for the last sample.
+  // Whether the last actuate() held an input channel at a magnitude bound: what the anti-windup of
+  // the position integrals acts on (the rate limit, which filters the actuator noise at most
+  // samples, does not count). Never (the default) for disturbances without limits.
+  virtual bool input_limited() const { return false; }
   virtual std::vector<LogColumn> log_columns() const { return {}; }
   virtual void log_values(std::vector<double>& row) const { (void)row; }
   // What the summary says of the run's conditions: drawn parameters, model options, saturation.

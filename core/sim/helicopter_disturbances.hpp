@@ -36,6 +36,7 @@ class HelicopterDisturbances final : public Disturbances {
                                      Eigen::VectorXd& applied) override;
   std::optional<std::string> check(const Eigen::VectorXd& x, double t) const override;
   // sat_* (0 free, 1 held at a magnitude bound, 2 slowed by the rate limit), Omega_mr, wind_N/E/D.
+  bool input_limited() const override { return limiter_.at_magnitude_bound(); }
   std::vector<LogColumn> log_columns() const override;
   void log_values(std::vector<double>& row) const override;
   void finish(RunSummary& summary) const override;

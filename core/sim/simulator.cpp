@@ -165,7 +165,15 @@ RunResult simulate(ControlLaw& law, Disturbances& disturbances, const ReferenceT
     if (settings.keep_log && k % settings.log_every == 0)
       append_row(t, tracked, now.position, x, measured, command, applied, disturbances, elapsed_ns, result.log);
 
-    reference_integral.accumulate(now.position, period);
+    // Anti-windup (ActuatorLimits::anti_windup): held, the command's integral follows the measured
+    // position, so that the measured-minus-command integral the controllers see does not move.
+    if (settings.actuator_limits.enabled && settings.actuator_limits.anti_windup && disturbances.input_limited()) {
+      Eigen::Vector3d held = now.position;
+      for (std::size_t i = 0; i < tracked.size(); ++i) held[static_cast<Eigen::Index>(i)] = measured[tracked[i].index];
+      reference_integral.accumulate(held, period);
+    } else {
+      reference_integral.accumulate(now.position, period);
+    }
     true_error_integral.accumulate(padded_error, period);
 
     failure = hold_for_one_period(plant, disturbances, applied, settings, workspace, x, t);
