@@ -13,6 +13,7 @@
 #include "apps/thetad/demo_command.hpp"
 #include "apps/thetad/plot_command.hpp"
 #include "apps/thetad/design_lqr_command.hpp"
+#include "apps/thetad/weights_command.hpp"
 #include "apps/thetad/optimal_command.hpp"
 #include "apps/thetad/run_command.hpp"
 #include "apps/thetad/tune_command.hpp"
@@ -50,6 +51,8 @@ int main(int argc, char** argv) {
   auto* compare = thetad::app::add_compare_command(app, compare_arguments);
   thetad::app::DesignLqrArguments design_lqr_arguments;
   auto* design_lqr = thetad::app::add_design_lqr_command(app, design_lqr_arguments);
+  thetad::app::WeightsArguments weights_arguments;
+  auto* weights = thetad::app::add_weights_command(app, weights_arguments);
   thetad::app::PlotArguments plot_arguments;
   auto* plot = thetad::app::add_plot_command(app, plot_arguments);
   thetad::app::TuneArguments tune_arguments;
@@ -81,6 +84,7 @@ int main(int argc, char** argv) {
     if (*approximation) return thetad::app::run_approximation(approximation_arguments);
     if (*plot) return thetad::app::run_plot(plot_arguments);
     if (*design_lqr) return thetad::app::run_design_lqr(design_lqr_arguments);
+    if (*weights) return thetad::app::run_weights(weights_arguments);
     if (*bench) return thetad::app::run_bench(bench_arguments);
     if (*campaign) return thetad::app::run_campaign_command(campaign_arguments);
     if (*optimal) return thetad::app::run_optimal(optimal_arguments);
