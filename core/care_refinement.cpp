@@ -79,18 +79,26 @@ void compensated_product(const MatrixXd& X, const MatrixXd& X_hi, const MatrixXd
 }  // namespace
 
 CareRefinement::CareRefinement(Index n, Index m)
-    : n_(n), m_(m), lyapunov_(n), P_hi_(n, n), P_lo_(n, n), Z_(n, n), Z_err_(n, n), N_(n, m), N_err_(n, m),
-      N_hi_(n, m), N_lo_(n, m), K_(m, n), E_(m, n), V_(n, n), V_err_(n, n), KE_(n, n), residual_(n, n), Ac_(n, n),
-      scaled_(n, n), identity_(MatrixXd::Identity(n, n)), H_(n, n), balance_(n) {}
+    : n_(n), m_(m), lyapunov_(n), P_scaled_(n, n), P_hi_(n, n), P_lo_(n, n), Z_(n, n), Z_err_(n, n), N_(n, m),
+      N_err_(n, m), N_hi_(n, m), N_lo_(n, m), K_(m, n), E_(m, n), V_(n, n), V_err_(n, n), KE_(n, n), residual_(n, n),
+      Ac_(n, n), scaled_(n, n), identity_(MatrixXd::Identity(n, n)), H_(n, n), balance_(n) {}
 
 void CareRefinement::compute_residual(const care::MatrixRef& A, const care::MatrixRef& B, const care::MatrixRef& R,
                                       const care::Weights& w, const MatrixXd& P) {
-  split_matrix(P, P_hi_, P_lo_);
-  compensated_product(P, P_hi_, P_lo_, nullptr, A, Z_, Z_err_);  // PA = (A'P)'
-  compensated_product(P, P_hi_, P_lo_, nullptr, B, N_, N_err_);  // PB = M', M = B'P
+  // P, Q and R times a power of two σ ≈ 1/‖P‖ (exact), so that no product over- or underflows
+  // whatever the scale of the weights: Res is homogeneous of degree one in (P, Q, R), K of degree
+  // zero. Below, every quantity but K is σ times its true value until Res is divided back.
+  const double p_norm = care::frobenius_norm(P);
+  sigma_ = p_norm > 0.0 && std::isfinite(p_norm) ? std::ldexp(1.0, -std::ilogb(p_norm)) : 1.0;
+  const double sigma = sigma_;
+  P_scaled_ = sigma * P;
+  split_matrix(P_scaled_, P_hi_, P_lo_);
+  compensated_product(P_scaled_, P_hi_, P_lo_, nullptr, A, Z_, Z_err_);  // PA = (A'P)'
+  compensated_product(P_scaled_, P_hi_, P_lo_, nullptr, B, N_, N_err_);  // PB = M', M = B'P
   K_ = N_.transpose();
   w.L.triangularView<Eigen::Lower>().solveInPlace(K_);
   w.L.transpose().triangularView<Eigen::Upper>().solveInPlace(K_);
+  K_ /= sigma;
   split_matrix(N_, N_hi_, N_lo_);
   compensated_product(N_, N_hi_, N_lo_, &N_err_, K_, V_, V_err_);  // M'K
   // E = RK − M cancels to the rounding level of M: compensated, then small enough for K'E in
@@ -100,10 +108,11 @@ void CareRefinement::compute_residual(const care::MatrixRef& A, const care::Matr
       double s = -N_(j, i);
       double c = -N_err_(j, i);
       for (Index k = 0; k < m_; ++k) {
+        const double r = sigma * R(i, k);
         double r_hi = 0.0, r_lo = 0.0, k_hi = 0.0, k_lo = 0.0, p = 0.0, e = 0.0, t = 0.0;
-        split(R(i, k), r_hi, r_lo);
+        split(r, r_hi, r_lo);
         split(K_(k, j), k_hi, k_lo);
-        two_product(R(i, k), r_hi, r_lo, K_(k, j), k_hi, k_lo, p, e);
+        two_product(r, r_hi, r_lo, K_(k, j), k_hi, k_lo, p, e);
         two_sum(s, p, s, t);
         c += t + e;
       }
@@ -119,11 +128,11 @@ void CareRefinement::compute_residual(const care::MatrixRef& A, const care::Matr
       double t = 0.0;
       two_sum(s, Z_(i, j), s, t);
       c += t;
-      two_sum(s, w.Q(i, j), s, t);
+      two_sum(s, sigma * w.Q(i, j), s, t);
       c += t;
       two_sum(s, -V_(i, j), s, t);
       c += t;
-      residual_(i, j) = residual_(j, i) = s + c;
+      residual_(i, j) = residual_(j, i) = (s + c) / sigma;
     }
 }
 
@@ -136,12 +145,13 @@ bool CareRefinement::balance_closed_loop(const care::MatrixRef& A, const care::M
   return LAPACKE_dgebal_work(LAPACK_COL_MAJOR, 'S', n, Ac_.data(), n, &ilo, &ihi, balance_.data()) == 0;
 }
 
+// Both norms of σ times their matrices: the ratio is the same, and the sums of squares stay in range.
 double CareRefinement::balanced_residual_ratio(const MatrixXd& P) const {
   double residual = 0.0;
   double solution = 0.0;
   for (Index j = 0; j < n_; ++j)
     for (Index i = 0; i < n_; ++i) {
-      const double d = balance_(i) * balance_(j);
+      const double d = sigma_ * balance_(i) * balance_(j);
       residual += (d * residual_(i, j)) * (d * residual_(i, j));
       solution += (d * P(i, j)) * (d * P(i, j));
     }

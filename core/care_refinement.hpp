@@ -38,9 +38,9 @@ class CareRefinement {
   // dgebal fails.
   bool balance_closed_loop(const care::MatrixRef& A, const care::MatrixRef& B);
   // ‖D·residual()·D‖_F / (‖Ãc‖_F ‖DPD‖_F): the residual in the balanced coordinates against the size
-  // of Ω(P̃) there. Rounding P to double precision alone leaves a residual of about eps times that
-  // size, so below eps P is as good as its own rounding in this measure (docs/care-estimates.md).
-  double balanced_residual_ratio(const Eigen::MatrixXd& P) const;
+  // of Ω(P̃) there, whose forming in double precision alone errs by up to about 2nε of it
+  // (docs/care-estimates.md).
+  double balanced_residual_ratio(const Eigen::MatrixXd& P) const;  // the P of compute_residual
   // The real Schur form of Ãc, for correction() and lyapunov_inverse_norm(). False (and nothing to
   // solve with) when Ac is not Hurwitz or its Schur form fails.
   bool factor_closed_loop();
@@ -54,13 +54,19 @@ class CareRefinement {
   // ‖H‖₂ ≤ ‖H‖_F ≤ √n ‖H‖₂. Large, not NaN, when Ω is singular to working precision.
   double lyapunov_inverse_norm();
 
+  // The Lyapunov solver, lent to a caller whose own Newton steps (in double precision) come before
+  // this object's: one workspace, not two, in every CareSolver. factor_closed_loop() again after.
+  LyapunovWorkspace& lyapunov() { return lyapunov_; }
+
  private:
   // X with Ac'X + XAc + W = 0 through the balanced Schur form.
   bool solve_balanced(const Eigen::MatrixXd& W, Eigen::MatrixXd& X, bool even_if_singular);
 
   Eigen::Index n_, m_;
   LyapunovWorkspace lyapunov_;
-  Eigen::MatrixXd P_hi_, P_lo_;       // P split in halves of 26 bits (Dekker)
+  double sigma_ = 1.0;                // a power of two near 1/‖P‖ (compute_residual)
+  Eigen::MatrixXd P_scaled_;          // σP
+  Eigen::MatrixXd P_hi_, P_lo_;       // σP split in halves of 26 bits (Dekker)
   Eigen::MatrixXd Z_, Z_err_;         // PA, as sum and error: (A'P)' since P = P'
   Eigen::MatrixXd N_, N_err_;         // PB = (B'P)'
   Eigen::MatrixXd N_hi_, N_lo_;       // PB split

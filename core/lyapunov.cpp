@@ -65,9 +65,18 @@ Eigen::MatrixXd solve_lyapunov(const Eigen::Ref<const Eigen::MatrixXd>& A,
   return X;
 }
 
+// Eigen's own Householder block size: below it RealSchur is allocation-free as it is, and its
+// results stay bit for bit those of before; from it on the in-place product of the reflectors
+// (HouseholderSequence::evalTo into its own vectors) avoids the blocked one's allocations.
+// RealSchur also divides A by its largest entry before the QR iteration; the Hessenberg form
+// there is of A itself, as LAPACK's dgees does without balancing. Below it the buffers of that
+// path stay empty.
+constexpr Eigen::Index kBlockedFrom = 48;
+
 LyapunovWorkspace::LyapunovWorkspace(Eigen::Index n)
-    : n_(n), schur_(std::max<Eigen::Index>(n, 1)), hessenberg_(std::max<Eigen::Index>(n, 1)), hessenberg_q_(n, n),
-      householder_workspace_(n), Y_(n, n), scratch_(n, n), wr_(n), wi_(n) {
+    : n_(n), schur_(std::max<Eigen::Index>(n, 1)), hessenberg_(n < kBlockedFrom ? 0 : n),
+      hessenberg_q_(n < kBlockedFrom ? 0 : n, n < kBlockedFrom ? 0 : n),
+      householder_workspace_(n < kBlockedFrom ? 0 : n), Y_(n, n), scratch_(n, n), wr_(n), wi_(n) {
   if (n < 1) throw Error("LyapunovWorkspace: n must be at least 1, got " + std::to_string(n));
 }
 
@@ -77,12 +86,6 @@ void LyapunovWorkspace::factor(const Eigen::Ref<const Eigen::MatrixXd>& A) {
     throw Error("solve_lyapunov: A must be " + std::to_string(n_) + "x" + std::to_string(n_) + ", got " + shape(A));
   if (!A.allFinite()) throw Error("solve_lyapunov: A has non-finite entries");
   a_norm_ = A.norm();
-  // Eigen's own Householder block size: below it RealSchur is allocation-free as it is, and its
-  // results stay bit for bit those of before; from it on the in-place product of the reflectors
-  // (HouseholderSequence::evalTo into its own vectors) avoids the blocked one's allocations.
-  // RealSchur also divides A by its largest entry before the QR iteration; the Hessenberg form
-  // here is of A itself, as LAPACK's dgees does without balancing.
-  constexpr Eigen::Index kBlockedFrom = 48;
   if (n_ < kBlockedFrom) {
     schur_.compute(A, true);
   } else {

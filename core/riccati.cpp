@@ -105,8 +105,7 @@ struct CareSolver::Workspace {
   std::vector<int> bwork, pivots, lu_iwork;
   Candidate candidate, next;
   MatrixXd Ak, delta;
-  LyapunovWorkspace lyapunov;
-  CareRefinement refinement;
+  CareRefinement refinement;  // its LyapunovWorkspace also serves refine()
   // What refinement holds for this solve: A − BK balanced, and its Schur form.
   bool closed_loop_balanced = false;
   bool closed_loop_factored = false;
@@ -122,8 +121,7 @@ CareSolver::Workspace::Workspace(const MatrixRef& Q, const MatrixRef& R_, CareMe
     : method(method_), proof(proof_), estimates(estimates_), R(R_), n(Q.rows()), m(R_.rows()), H(2 * n, 2 * n),
       H_s(2 * n, 2 * n), d(2 * n), d_balance(2 * n), sign(2 * n), lhs(2 * n, n), rhs(2 * n, n), qr_coefficients(n), qr_workspace(n),
       U(2 * n, 2 * n), U1(n, n), X(n, n), wr(2 * n), wi(2 * n), lu_work(4 * n), bwork(2 * n), pivots(n), lu_iwork(n),
-      Ak(n, n), delta(n, n), lyapunov(std::max<Index>(n, 1)), refinement(std::max<Index>(n, 1), std::max<Index>(m, 1)),
-      certificate(n), eigen(n) {
+      Ak(n, n), delta(n, n), refinement(std::max<Index>(n, 1), std::max<Index>(m, 1)), certificate(n), eigen(n) {
   if (n == 0 || Q.cols() != n) fail("Q must be square and non-empty, but Q is " + care::shape(Q));
   if (m == 0 || R_.cols() != m) fail("R must be square and non-empty, but R is " + care::shape(R_));
   if (!Q.allFinite()) fail("Q has a non-finite entry (NaN or Inf)");
@@ -303,8 +301,8 @@ int CareSolver::Workspace::refine(const MatrixRef& A) {
     Ak = A;
     Ak.noalias() -= w.W.transpose() * candidate.WP;
     try {
-      lyapunov.factor(Ak);
-      lyapunov.solve(candidate.Res, delta);
+      refinement.lyapunov().factor(Ak);
+      refinement.lyapunov().solve(candidate.Res, delta);
     } catch (const Error&) {
       break;  // A − GP is not Hurwitz: finish() reports that with the eigenvalue
     }
@@ -328,10 +326,13 @@ bool CareSolver::Workspace::terms_dwarf_q(const MatrixRef& A) const {
 }
 
 // Newton steps with the residual in compensated arithmetic (care_refinement.hpp), all with the
-// Schur form of the first closed loop (chord steps). None when that residual is already at the
-// rounding level of P (balanced_residual_ratio ≤ eps: measured, 8e-17 on the paper's problem,
-// whose direct solution is within 6e-16 of the exact one, and 6e-16 … 7e-9 on the spread
-// problems, whose direct solutions were 4e-13 … 5e-9 off). Each step's successor correction is the
+// Schur form of the first closed loop (chord steps). None when that residual is within what
+// forming Ω(P) = Ac'P + PAc in double precision leaves in the closed loop's balanced coordinates,
+// two inner products of length n: balanced_residual_ratio ≤ 2nε. Measured (docs/performance-log.md,
+// 2026-11-27): 8e-17 on the paper's problem and 4e-17 … 3.3e-15 on the SDRE's cold solves along
+// scenario I, whose direct solutions the first correction puts 2e-16 … 7e-15 off, and 1.4e-14 … 7e-9 on
+// every spread problem of the study whose direct solution missed issue 34's bound (the two below
+// 2nε, at 6e-16 and 2.3e-15, met it). Each step's successor correction is the
 // estimate of its P's error; the P with the smallest is kept, provided it stays backward stable.
 // Usually the second correction is at rounding level and ends it; on one badly scaled problem the
 // first step multiplied the error by 16 (the second-order term, not rounding) and the second
@@ -342,7 +343,7 @@ int CareSolver::Workspace::compensated_steps(const MatrixRef& A, const MatrixRef
   refinement.compute_residual(A, B, R, w, candidate.P);
   if (!refinement.residual().allFinite() || !refinement.balance_closed_loop(A, B)) return 0;
   closed_loop_balanced = true;
-  if (!(refinement.balanced_residual_ratio(candidate.P) > kEps)) return 0;
+  if (!(refinement.balanced_residual_ratio(candidate.P) > 2.0 * static_cast<double>(n) * kEps)) return 0;
   if (!refinement.factor_closed_loop()) return 0;
   closed_loop_factored = true;
   if (!refinement.correction(delta)) return 0;

@@ -80,6 +80,29 @@ TEST(CareEstimates, ForwardErrorEstimateTracksTheTrueError) {
   EXPECT_GE(above_rounding, 15);
 }
 
+// Q and R times 2^k (exactly, so that the exact solution is 2^k P_exact): the compensated residual
+// works on P scaled to norm ~1, so weights at the ends of the double range neither overflow nor
+// lose the error terms to underflow.
+TEST(CareEstimates, WeightsAtTheEndsOfTheDoubleRange) {
+  const testing::Fixture f = testing::read_fixture(std::filesystem::path(THETAD_SOURCE_DIR) /
+                                                   "tests/fixtures/care_reference/n18_m5_0.txt");
+  const MatrixXd& A = f.matrices.at("A");
+  const MatrixXd& B = f.matrices.at("B");
+  const double bound = 100.0 * static_cast<double>(A.rows()) * kEps;
+  for (const int k : {-900, -500, 0, 500, 900}) {
+    SCOPED_TRACE(k);
+    const double scale = std::ldexp(1.0, k);
+    const MatrixXd exact = scale * f.matrices.at("P_exact");
+    const CareResult result =
+        solve_care(A, B, scale * f.matrices.at("Q"), scale * f.matrices.at("R"), CareMethod::automatic, ErrorEstimates::on);
+    const double error = (result.P - exact).stableNorm() / exact.stableNorm();  // norm() overflows at 2^900
+    EXPECT_LE(error, bound);
+    ASSERT_TRUE(std::isfinite(result.forward_error));
+    EXPECT_GE(result.forward_error, error / 10.0);
+    EXPECT_LE(result.forward_error, bound);
+  }
+}
+
 TEST(CareEstimates, OffLeavesThemNaNAndPUnchanged) {
   const testing::Fixture f = testing::read_fixture(std::filesystem::path(THETAD_SOURCE_DIR) /
                                                    "tests/fixtures/care_reference/n18_m5_0.txt");
