@@ -3,9 +3,9 @@
 // The Newton correction of a computed CARE solution with its residual taken in compensated
 // arithmetic, and the error estimates built on it (docs/care-estimates.md derives them).
 //
-// On problems whose weights span decades the terms A'P, PA and PGP are up to 1e7 times larger
+// On problems whose weights span decades the terms A'P, PA and PGP are 1e6 … 1e18 times larger
 // than Q and cancel, so a residual computed in double precision is mostly rounding, and a Newton
-// step driven by it moves P as much away from the solution as towards it (docs/performance.md).
+// step driven by it moves P as much away from the solution as towards it (docs/performance-log.md).
 // Here the residual is exact to about eps² of the terms: every product is an error-free
 // transformation (Dekker's two-product) summed with Knuth's two-sum (the Dot2 of Ogita, Rump and
 // Oishi 2005), and G = BR⁻¹B' is never formed. Kleinman's form does that: with M = B'P and any K,
