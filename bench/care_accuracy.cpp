@@ -1,8 +1,10 @@
 // Forward error of the CARE solvers against 40-digit reference solutions: thetad's automatic,
-// matrix-sign and Schur methods and SLICOT SB02MD, on the paper's problem and on random n = 18,
-// m = 5 problems with the paper's weight spread (the first is riccati_bench's n18_m5).
+// matrix-sign and Schur methods and SLICOT SB02MD and SB02OD, on the paper's problem and on random
+// problems: with the paper's weight spread at n = 12, 18 (the first is riccati_bench's n18_m5) and
+// 36, the same in badly scaled state coordinates at n = 10 and 18, and with Q = I, R = I.
 //
-//   care_accuracy write DIR [COUNT]        the problems, DIR/NAME.txt (COUNT random ones, default 12)
+//   care_accuracy write DIR [COUNT]        the problems, DIR/NAME.txt (COUNT random n = 18 ones,
+//                                          default 12, and up to 4 of each other family)
 //   care_accuracy write-ill-r DIR [COUNT]  instead: n = 6, m = 3 problems with κ(R) in 1e7 … 1e10
 //                                          (as CAREX 2.2), default 16
 //   /usr/bin/python3 scripts/care_reference.py DIR    their reference solutions, DIR/NAME.ref
@@ -85,13 +87,29 @@ const MatrixXd& field(const std::map<std::string, MatrixXd>& matrices, const std
   return it->second;
 }
 
-std::vector<CareProblem> paper_sized_problems(int count) {
-  std::vector<CareProblem> problems{thetad::bench::paper_care_problem()};
+using ProblemMaker = CareProblem (*)(std::string, Eigen::Index, Eigen::Index, std::mt19937_64&);
+
+// COUNT problems NAME_k of one family, seeded seed + 7919k.
+void add_family(std::vector<CareProblem>& problems, const std::string& name, ProblemMaker make, Eigen::Index n,
+                Eigen::Index m, std::uint64_t seed, int count) {
   for (int k = 0; k < count; ++k) {
-    // Seed 1000n + m for k = 0, as riccati_bench's n18_m5.
-    std::mt19937_64 rng(18005 + 7919 * static_cast<std::uint64_t>(k));
-    problems.push_back(thetad::bench::random_care_problem("n18_m5_" + std::to_string(k), 18, 5, rng));
+    std::mt19937_64 rng(seed + 7919 * static_cast<std::uint64_t>(k));
+    problems.push_back(make(name + "_" + std::to_string(k), n, m, rng));
   }
+}
+
+std::vector<CareProblem> study_problems(int count) {
+  using namespace thetad::bench;
+  std::vector<CareProblem> problems{paper_care_problem()};
+  const int others = std::min(count, 4);
+  // Seed 1000n + m for the first of a family, as riccati_bench's n18_m5.
+  add_family(problems, "n18_m5", random_care_problem, 18, 5, 18005, count);
+  add_family(problems, "n12_m4", random_care_problem, 12, 4, 12004, others);
+  add_family(problems, "n36_m10", random_care_problem, 36, 10, 36010, others);
+  add_family(problems, "scaled_n10_m3", diagonally_scaled_care_problem, 10, 3, 10003, others);
+  add_family(problems, "scaled_n18_m5", diagonally_scaled_care_problem, 18, 5, 18005, std::min(count, 2));
+  add_family(problems, "unit_n18_m6", unit_weight_care_problem, 18, 6, 18006, std::min(count, 2));
+  add_family(problems, "unit_n40_m13", unit_weight_care_problem, 40, 13, 40013, std::min(count, 1));
   return problems;
 }
 
@@ -119,9 +137,11 @@ void compare(const fs::path& dir) {
   std::sort(files.begin(), files.end());
   if (files.empty()) throw thetad::Error(dir.string() + ": no problems (run care_accuracy write first)");
 
-  std::printf("relative forward error ‖P − P_ref‖_F/‖P_ref‖_F, and relative residual ‖Res‖_F/max(1, ‖Q‖_F)\n");
-  std::printf("%-16s | %-9s %-9s %-9s %-9s | %-9s %-9s %-9s %-9s %-9s | %s\n", "problem", "automatic", "sign",
-              "schur", "SB02MD", "automatic", "sign", "schur", "SB02MD", "rounded", "sign it.");
+  std::printf("relative forward error ‖P − P_ref‖_F/‖P_ref‖_F; the error and condition estimates of automatic "
+              "(ErrorEstimates::on); relative residual ‖Res‖_F/max(1, ‖Q‖_F)\n");
+  std::printf("%-16s | %-9s %-9s %-9s %-9s %-9s | %-9s %-9s | %-9s %-9s %-9s %-9s %-9s %-9s | %s\n", "problem",
+              "automatic", "sign", "schur", "SB02MD", "SB02OD", "estimate", "condition", "automatic", "sign", "schur",
+              "SB02MD", "SB02OD", "rounded", "sign it.");
   for (const fs::path& path : files) {
     const auto problem = read_matrices(path);
     fs::path ref_path = path;
@@ -135,10 +155,16 @@ void compare(const fs::path& dir) {
     // A method that refuses the equation (matrix_sign near the imaginary axis) shows "refused".
     std::vector<std::optional<MatrixXd>> solutions;
     int sign_iterations = 0;
+    double estimate = 0.0;
+    double condition = 0.0;
     for (const auto method : {thetad::CareMethod::automatic, thetad::CareMethod::matrix_sign, thetad::CareMethod::schur}) {
       try {
-        const thetad::CareResult result = thetad::solve_care(A, B, Q, R, method);
-        if (method == thetad::CareMethod::automatic) sign_iterations = result.sign_iterations;
+        const thetad::CareResult result = thetad::solve_care(A, B, Q, R, method, thetad::ErrorEstimates::on);
+        if (method == thetad::CareMethod::automatic) {
+          sign_iterations = result.sign_iterations;
+          estimate = result.forward_error;
+          condition = result.condition;
+        }
         solutions.emplace_back(result.P);
       } catch (const thetad::Error&) {
         solutions.emplace_back();
@@ -149,6 +175,9 @@ void compare(const fs::path& dir) {
     MatrixXd slicot;
     const int info = sb02md.solve(A, G, Q, slicot);
     solutions.push_back(info == 0 ? std::optional<MatrixXd>(slicot) : std::nullopt);
+    thetad::bench::Sb02od sb02od(static_cast<int>(A.rows()), static_cast<int>(B.cols()));
+    const int od_info = sb02od.solve(A, B, Q, R, slicot);
+    solutions.push_back(od_info == 0 ? std::optional<MatrixXd>(slicot) : std::nullopt);
 
     const auto cells = [&](const auto& measure) {
       std::string text;
@@ -159,8 +188,8 @@ void compare(const fs::path& dir) {
       }
       return text;
     };
-    std::printf("%-16s | %s| %s%-9.1e | %d\n", name.c_str(), cells(forward).c_str(), cells(residual).c_str(),
-                residual(P_ref), sign_iterations);
+    std::printf("%-16s | %s| %-9.1e %-9.1e | %s%-9.1e | %d\n", name.c_str(), cells(forward).c_str(), estimate,
+                condition, cells(residual).c_str(), residual(P_ref), sign_iterations);
   }
 }
 
@@ -182,7 +211,7 @@ int main(int argc, char** argv) {
         }
         if (used != args[2].size() || count < 0) throw thetad::Error("COUNT must be an integer ≥ 0, got '" + args[2] + "'");
       }
-      write(args[1], ill_r ? ill_conditioned_r_problems(count) : paper_sized_problems(count));
+      write(args[1], ill_r ? ill_conditioned_r_problems(count) : study_problems(count));
     } else if (args.size() == 2 && args[0] == "compare") {
       compare(args[1]);
     } else {

@@ -54,6 +54,20 @@ inline CareProblem unit_weight_care_problem(std::string name, Eigen::Index n, Ei
   return p;
 }
 
+// random_care_problem in badly scaled state coordinates: x = D x̃ with D = diag(10^e), e uniform
+// in [−2, 2], so that A = D⁻¹ Ã D has entries from about 1e-4 to 1e3 and B = D⁻¹ B̃; Q and R
+// keep the paper's seven decades. Draws from rng in the order Ã, B̃, Q, R, D.
+inline CareProblem diagonally_scaled_care_problem(std::string name, Eigen::Index n, Eigen::Index m,
+                                                  std::mt19937_64& rng) {
+  CareProblem p = random_care_problem(std::move(name), n, m, rng);
+  std::uniform_real_distribution<double> exponent(-2.0, 2.0);
+  Eigen::VectorXd d(n);
+  for (Eigen::Index i = 0; i < n; ++i) d(i) = std::pow(10.0, exponent(rng));
+  p.A = d.cwiseInverse().asDiagonal() * p.A * d.asDiagonal();
+  p.B = d.cwiseInverse().asDiagonal() * p.B;
+  return p;
+}
+
 // A problem whose R is nearly singular, as CAREX 2.2: R = U diag(1, 10^−a, 10^−b) U' … with U a
 // random rotation, a uniform in [0, 1] and κ(R) = 10^b, b uniform in [log10_kappa_low,
 // log10_kappa_high]; A and B as above, Q = C'C with a random square C.

@@ -20,6 +20,12 @@ enum class StabilityProof {
   lyapunov,
 };
 
+// Whether solve_care and CareSolver also estimate how accurate their P is (CareResult's
+// forward_error and condition): one residual in compensated arithmetic, a Schur form of the closed
+// loop and two Lyapunov solves more (docs/care-estimates.md), so off unless asked for: the SDRE's
+// per-step solve does without.
+enum class ErrorEstimates { off, on };
+
 struct CareResult {
   Eigen::MatrixXd P;                         // stabilizing solution, exactly symmetric
   Eigen::MatrixXd K;                         // R⁻¹ B' P: the optimal feedback is u = −K x
@@ -29,13 +35,23 @@ struct CareResult {
   // ‖A'P + PA − PBR⁻¹B'P + Q‖_F / max(1, ‖Q‖_F). On ill-conditioned equations the terms of
   // the sum can be far larger than Q, and so is this number even for a backward-stable solve.
   double relative_residual;
-  // Newton steps taken. solve_care: Newton refinement steps after the direct solution, 0 unless
-  // that solution was not backward stable (see riccati.cpp); Newton–Kleinman: its Lyapunov solves,
+  // Newton steps taken. solve_care: Newton refinement steps after the direct solution: in double
+  // precision when that solution was not backward stable, and with the residual in compensated
+  // arithmetic when CareMethod::automatic finds its terms dwarfing Q and its residual above
+  // rounding level (see riccati.cpp); 0 otherwise. Newton–Kleinman: its Lyapunov solves,
   // Newton and chord steps alike, an undone chord step and the steps before a restart included.
   int iterations;
   // Inversions of the sign-function iteration that produced P; 0 when P came from the Schur
   // form or from Newton–Kleinman.
   int sign_iterations = 0;
+  // With ErrorEstimates::on, else NaN (docs/care-estimates.md):
+  // an estimate of ‖P − P_exact‖_F / ‖P_exact‖_F for the equation as given (its data taken as
+  // exact): the Newton correction of P with the residual in compensated arithmetic, which is
+  // −(P − P_exact) to first order;
+  double forward_error = std::numeric_limits<double>::quiet_NaN();
+  // the relative condition number of P with respect to relative perturbations of A, G = BR⁻¹B'
+  // and Q, bounded as ‖Ω⁻¹‖(‖Q‖_F + 2‖A‖_F‖P‖_F + ‖G‖_F‖P‖_F²)/‖P‖_F, Ω(X) = Ac'X + XAc.
+  double condition = std::numeric_limits<double>::quiet_NaN();
 };
 
 // closed_loop_eigenvalues of a result whose stability the Lyapunov certificate proved: NaN, so that

@@ -65,8 +65,18 @@ Eigen::MatrixXd solve_lyapunov(const Eigen::Ref<const Eigen::MatrixXd>& A,
   return X;
 }
 
+// Eigen's own Householder block size: below it RealSchur is allocation-free as it is, and its
+// results stay bit for bit those of before; from it on the in-place product of the reflectors
+// (HouseholderSequence::evalTo into its own vectors) avoids the blocked one's allocations.
+// RealSchur also divides A by its largest entry before the QR iteration; the Hessenberg form
+// there is of A itself, as LAPACK's dgees does without balancing. Below it the buffers of that
+// path stay empty.
+constexpr Eigen::Index kBlockedFrom = 48;
+
 LyapunovWorkspace::LyapunovWorkspace(Eigen::Index n)
-    : n_(n), schur_(std::max<Eigen::Index>(n, 1)), Y_(n, n), scratch_(n, n), wr_(n), wi_(n) {
+    : n_(n), schur_(std::max<Eigen::Index>(n, 1)), hessenberg_(n < kBlockedFrom ? 0 : n),
+      hessenberg_q_(n < kBlockedFrom ? 0 : n, n < kBlockedFrom ? 0 : n),
+      householder_workspace_(n < kBlockedFrom ? 0 : n), Y_(n, n), scratch_(n, n), wr_(n), wi_(n) {
   if (n < 1) throw Error("LyapunovWorkspace: n must be at least 1, got " + std::to_string(n));
 }
 
@@ -76,7 +86,17 @@ void LyapunovWorkspace::factor(const Eigen::Ref<const Eigen::MatrixXd>& A) {
     throw Error("solve_lyapunov: A must be " + std::to_string(n_) + "x" + std::to_string(n_) + ", got " + shape(A));
   if (!A.allFinite()) throw Error("solve_lyapunov: A has non-finite entries");
   a_norm_ = A.norm();
-  schur_.compute(A, true);
+  if (n_ < kBlockedFrom) {
+    schur_.compute(A, true);
+  } else {
+    hessenberg_.compute(A);
+    hessenberg_q_ = hessenberg_.packedMatrix();
+    Eigen::HouseholderSequence<Eigen::MatrixXd, Eigen::VectorXd>(hessenberg_q_, hessenberg_.householderCoefficients())
+        .setLength(n_ - 1)
+        .setShift(1)
+        .evalTo(hessenberg_q_, householder_workspace_);
+    schur_.computeFromHessenberg(hessenberg_.matrixH(), hessenberg_q_, true);
+  }
   if (schur_.info() != Eigen::Success) throw Error("solve_lyapunov: the real Schur form of A did not converge");
   // The eigenvalues of the diagonal blocks; RealSchur leaves 2×2 blocks for complex pairs only.
   const Eigen::MatrixXd& T = schur_.matrixT();
@@ -133,7 +153,8 @@ void LyapunovWorkspace::sweep(bool symmetric) {
   }
 }
 
-void LyapunovWorkspace::solve(const Eigen::Ref<const Eigen::MatrixXd>& Q, Eigen::Ref<Eigen::MatrixXd> X) {
+void LyapunovWorkspace::solve(const Eigen::Ref<const Eigen::MatrixXd>& Q, Eigen::Ref<Eigen::MatrixXd> X,
+                              bool refuse_singular) {
   if (!factored_) throw Error("LyapunovWorkspace::solve: factor(A) first");
   if (Q.rows() != n_ || Q.cols() != n_ || X.rows() != n_ || X.cols() != n_)
     throw Error("solve_lyapunov: Q and X must be " + std::to_string(n_) + "x" + std::to_string(n_) + ", got Q " +
@@ -150,7 +171,7 @@ void LyapunovWorkspace::solve(const Eigen::Ref<const Eigen::MatrixXd>& Q, Eigen:
     }
   const double smallest = std::sqrt(smallest_squared);
   const double threshold = 1e-10 * std::max(a_norm_, 1.0);
-  if (smallest <= threshold) {
+  if (refuse_singular && smallest <= threshold) {
     std::ostringstream message;
     message << "solve_lyapunov: the Lyapunov operator X -> A'X + XA is singular to working "
                "precision: min |λi(A) + λj(A)| = "

@@ -45,8 +45,10 @@ class LyapunovWorkspace {
   double max_real_eigenvalue() const { return wr_.maxCoeff(); }
 
   // X with A'X + XA + Q = 0 for the A of the last factor(); Q symmetric gives X exactly
-  // symmetric. Throws as solve_lyapunov.
-  void solve(const Eigen::Ref<const Eigen::MatrixXd>& Q, Eigen::Ref<Eigen::MatrixXd> X);
+  // symmetric. Throws as solve_lyapunov, unless refuse_singular is false: then a Lyapunov operator
+  // singular to working precision gives the huge X it implies, for a caller that wants to see how
+  // huge (the CARE error estimates of care_refinement.hpp).
+  void solve(const Eigen::Ref<const Eigen::MatrixXd>& Q, Eigen::Ref<Eigen::MatrixXd> X, bool refuse_singular = true);
 
  private:
   // T'Y + YT = Y in place, T = schur_.matrixT().
@@ -54,6 +56,11 @@ class LyapunovWorkspace {
 
   Eigen::Index n_;
   Eigen::RealSchur<Eigen::MatrixXd> schur_;  // A = U T U'
+  // From n = 48 on, where RealSchur would form U with blocked Householder products (they
+  // allocate), the Hessenberg form and U come from these, the reflectors applied in place.
+  Eigen::HessenbergDecomposition<Eigen::MatrixXd> hessenberg_;
+  Eigen::MatrixXd hessenberg_q_;
+  Eigen::VectorXd householder_workspace_;
   Eigen::MatrixXd Y_, scratch_;  // U'XU, and the one intermediate of a triple product
   Eigen::VectorXd wr_, wi_;
   double a_norm_ = 0.0;

@@ -11,6 +11,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "core/care_diagnosis.hpp"
+#include "core/care_refinement.hpp"
 #include "core/care_weights.hpp"
 #include "core/error.hpp"
 #include "core/lapack.hpp"
@@ -48,6 +49,14 @@ constexpr double kRefineAbove = 1e-12;
 // 40 is reached only near the imaginary axis, where the Schur method is the one to trust.
 constexpr int kSignIterations = 40;
 
+// The compensated Newton steps are considered when the terms A'P, PA and PGP exceed Q by more than
+// this, i.e. when the residual of the exact solution rounded to double precision, about eps times
+// that ratio relative to Q, is above 1e-10. Measured (docs/performance-log.md, 2026-11-27): the ratio
+// is 8e3 … 1.4e6 with Q = I, R = I from n = 10 to 60, where the sign function is within issue 34's
+// bound already, and 1e6 … 1e18 with the paper's weight spread (2.7e8 on the paper's own problem),
+// where it was up to 1.3e4 times that bound without the steps.
+constexpr double kTermsOverQ = 1e6;
+
 // A P with everything finish() and the refinement need about it.
 struct Candidate {
   MatrixXd P;  // symmetric
@@ -61,7 +70,7 @@ struct Candidate {
 // Both direct methods work on a diagonally scaled H_s = D⁻¹ H D, D = diag(d); a basis of the
 // stable subspace of H is D times one of H_s's, so [I; P_s] for H_s gives P = D2 P_s D1⁻¹.
 struct CareSolver::Workspace {
-  Workspace(const MatrixRef& Q, const MatrixRef& R, CareMethod method, StabilityProof proof);
+  Workspace(const MatrixRef& Q, const MatrixRef& R, CareMethod method, StabilityProof proof, ErrorEstimates estimates);
 
   const CareResult& solve(const MatrixRef& A, const MatrixRef& B);
 
@@ -74,12 +83,16 @@ struct CareSolver::Workspace {
   void unscale(const Eigen::Ref<const MatrixXd>& P_s, MatrixXd& P) const;
   void evaluate(const MatrixRef& A, Candidate& c) const;
   int refine(const MatrixRef& A);
+  bool terms_dwarf_q(const MatrixRef& A) const;
+  int compensated_steps(const MatrixRef& A, const MatrixRef& B);
+  void estimate_errors(const MatrixRef& A, const MatrixRef& B);
   const CareResult& finish(const MatrixRef& A, const MatrixRef& B, bool have_spectrum, int iterations);
 
   CareMethod method;
   StabilityProof proof;
+  ErrorEstimates estimates;
   Weights w;
-  MatrixXd R;  // as given: only for check_inputs' sizes
+  MatrixXd R;  // as given: for check_inputs' sizes and the compensated residual (Kleinman's form)
   Index n, m;
   double g_norm = 0.0;
   MatrixXd H, H_s;  // H = [A, −G; −Q, −A'] and D⁻¹ H D
@@ -92,17 +105,23 @@ struct CareSolver::Workspace {
   std::vector<int> bwork, pivots, lu_iwork;
   Candidate candidate, next;
   MatrixXd Ak, delta;
-  LyapunovWorkspace lyapunov;
+  CareRefinement refinement;  // its LyapunovWorkspace also serves refine()
+  // What refinement holds for this solve: A − BK balanced, and its Schur form.
+  bool closed_loop_balanced = false;
+  bool closed_loop_factored = false;
+  // The forward-error estimate of candidate.P once compensated_steps has one; NaN before.
+  double known_forward_error = std::numeric_limits<double>::quiet_NaN();
   LyapunovCertificate certificate;
   Eigen::EigenSolver<MatrixXd> eigen;
   CareResult result;
 };
 
-CareSolver::Workspace::Workspace(const MatrixRef& Q, const MatrixRef& R_, CareMethod method_, StabilityProof proof_)
-    : method(method_), proof(proof_), R(R_), n(Q.rows()), m(R_.rows()), H(2 * n, 2 * n), H_s(2 * n, 2 * n), d(2 * n),
-      d_balance(2 * n), sign(2 * n), lhs(2 * n, n), rhs(2 * n, n), qr_coefficients(n), qr_workspace(n),
+CareSolver::Workspace::Workspace(const MatrixRef& Q, const MatrixRef& R_, CareMethod method_, StabilityProof proof_,
+                                 ErrorEstimates estimates_)
+    : method(method_), proof(proof_), estimates(estimates_), R(R_), n(Q.rows()), m(R_.rows()), H(2 * n, 2 * n),
+      H_s(2 * n, 2 * n), d(2 * n), d_balance(2 * n), sign(2 * n), lhs(2 * n, n), rhs(2 * n, n), qr_coefficients(n), qr_workspace(n),
       U(2 * n, 2 * n), U1(n, n), X(n, n), wr(2 * n), wi(2 * n), lu_work(4 * n), bwork(2 * n), pivots(n), lu_iwork(n),
-      Ak(n, n), delta(n, n), lyapunov(std::max<Index>(n, 1)), certificate(n), eigen(n) {
+      Ak(n, n), delta(n, n), refinement(std::max<Index>(n, 1), std::max<Index>(m, 1)), certificate(n), eigen(n) {
   if (n == 0 || Q.cols() != n) fail("Q must be square and non-empty, but Q is " + care::shape(Q));
   if (m == 0 || R_.cols() != m) fail("R must be square and non-empty, but R is " + care::shape(R_));
   if (!Q.allFinite()) fail("Q has a non-finite entry (NaN or Inf)");
@@ -282,8 +301,8 @@ int CareSolver::Workspace::refine(const MatrixRef& A) {
     Ak = A;
     Ak.noalias() -= w.W.transpose() * candidate.WP;
     try {
-      lyapunov.factor(Ak);
-      lyapunov.solve(candidate.Res, delta);
+      refinement.lyapunov().factor(Ak);
+      refinement.lyapunov().solve(candidate.Res, delta);
     } catch (const Error&) {
       break;  // A − GP is not Hurwitz: finish() reports that with the eigenvalue
     }
@@ -296,6 +315,94 @@ int CareSolver::Workspace::refine(const MatrixRef& A) {
     ++refinements;
   }
   return refinements;
+}
+
+// Whether the terms of the equation dwarf Q, so that a residual in double precision is mostly
+// rounding and the direct solution's forward error can exceed SB02OD's (docs/performance.md).
+bool CareSolver::Workspace::terms_dwarf_q(const MatrixRef& A) const {
+  const double p_norm = care::frobenius_norm(candidate.P);
+  const double terms = 2.0 * care::frobenius_norm(A) * p_norm + g_norm * p_norm * p_norm;
+  return !(terms <= kTermsOverQ * w.q_norm);
+}
+
+// Newton steps with the residual in compensated arithmetic (care_refinement.hpp), all with the
+// Schur form of the first closed loop (chord steps). None when that residual is within what
+// forming Ω(P) = Ac'P + PAc in double precision leaves in the closed loop's balanced coordinates,
+// two inner products of length n: balanced_residual_ratio ≤ 2nε. Measured (docs/performance-log.md,
+// 2026-11-27): 8e-17 on the paper's problem and 4e-17 … 3.3e-15 on the SDRE's cold solves along
+// scenario I, whose direct solutions the first correction puts 2e-16 … 7e-15 off, and 1.4e-14 … 7e-9 on
+// every spread problem of the study whose direct solution missed issue 34's bound (the two below
+// 2nε, at 6e-16 and 2.3e-15, met it). Each step's successor correction is the
+// estimate of its P's error; the P with the smallest is kept, provided it stays backward stable.
+// Usually the second correction is at rounding level and ends it; on one badly scaled problem the
+// first step multiplied the error by 16 (the second-order term, not rounding) and the second
+// brought it to 9e-15. known_forward_error then holds the estimate for the P kept. Returns the
+// steps that led to it (0: P unchanged).
+int CareSolver::Workspace::compensated_steps(const MatrixRef& A, const MatrixRef& B) {
+  constexpr int kMaxSteps = 3;
+  refinement.compute_residual(A, B, R, w, candidate.P);
+  if (!refinement.residual().allFinite() || !refinement.balance_closed_loop(A, B)) return 0;
+  closed_loop_balanced = true;
+  if (!(refinement.balanced_residual_ratio(candidate.P) > 2.0 * static_cast<double>(n) * kEps)) return 0;
+  if (!refinement.factor_closed_loop()) return 0;
+  closed_loop_factored = true;
+  if (!refinement.correction(delta)) return 0;
+  double best = care::frobenius_norm(delta);
+  known_forward_error = best / care::frobenius_norm(candidate.P);
+  const double eta_bound = std::max(candidate.eta, kRefineAbove);
+  double previous = best;
+  int kept = 0;
+  next.P = candidate.P;
+  for (int step = 0; step < kMaxSteps; ++step) {
+    next.P += delta;
+    for (Index j = 0; j < n; ++j)
+      for (Index i = 0; i < j; ++i) next.P(i, j) = next.P(j, i) = 0.5 * (next.P(i, j) + next.P(j, i));
+    evaluate(A, next);
+    if (!(next.eta <= eta_bound)) break;
+    refinement.compute_residual(A, B, R, w, next.P);
+    if (!refinement.residual().allFinite() || !refinement.correction(delta)) break;
+    const double size = care::frobenius_norm(delta);
+    const double p_norm = care::frobenius_norm(next.P);
+    if (size < best) {
+      candidate = next;
+      best = size;
+      known_forward_error = size / p_norm;
+      kept = step + 1;
+    }
+    if (size <= kEps * p_norm || size > 10.0 * previous) break;
+    previous = size;
+  }
+  return kept;
+}
+
+// CareResult::forward_error and condition for candidate.P (docs/care-estimates.md): the Newton
+// correction from the compensated residual is −(P − P_exact) to first order. The closed loop of a
+// compensated step's starting point serves: it differs from P's by that step, a second-order
+// change in the estimate.
+void CareSolver::Workspace::estimate_errors(const MatrixRef& A, const MatrixRef& B) {
+  constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+  result.forward_error = result.condition = nan;
+  if (std::isnan(known_forward_error)) {
+    // When compensated_steps stopped before a correction, refinement holds candidate.P's residual
+    // and balanced closed loop.
+    if (!closed_loop_balanced) {
+      refinement.compute_residual(A, B, R, w, candidate.P);
+      if (!refinement.residual().allFinite() || !refinement.balance_closed_loop(A, B)) return;
+      closed_loop_balanced = true;
+    }
+    if (!closed_loop_factored) {
+      if (!refinement.factor_closed_loop()) return;
+      closed_loop_factored = true;
+    }
+    if (!refinement.correction(delta, true)) return;
+    const double p_norm = care::frobenius_norm(candidate.P);
+    const double delta_norm = care::frobenius_norm(delta);
+    known_forward_error = p_norm > 0.0 ? delta_norm / p_norm : (delta_norm == 0.0 ? 0.0 : nan);
+  }
+  const double p_norm = care::frobenius_norm(candidate.P);
+  const double terms = w.q_norm + 2.0 * care::frobenius_norm(A) * p_norm + g_norm * p_norm * p_norm;
+  result.forward_error = known_forward_error;
+  result.condition = p_norm > 0.0 ? refinement.lyapunov_inverse_norm() * terms / p_norm : nan;
 }
 
 // Fills K, the closed-loop spectrum (unless wr, wi hold it already, or the Lyapunov certificate
@@ -335,6 +442,8 @@ const CareResult& CareSolver::Workspace::finish(const MatrixRef& A, const Matrix
 
 const CareResult& CareSolver::Workspace::solve(const MatrixRef& A, const MatrixRef& B) {
   care::check_inputs(A, B, w.Q, R);
+  closed_loop_balanced = closed_loop_factored = false;
+  known_forward_error = std::numeric_limits<double>::quiet_NaN();
   care::set_input_matrix(w, B);
   form_hamiltonian(A);
 
@@ -348,8 +457,10 @@ const CareResult& CareSolver::Workspace::solve(const MatrixRef& A, const MatrixR
           fail("the matrix sign solution is not backward stable (normwise residual " + num(candidate.eta) +
                " after " + std::to_string(refinements) + " Newton refinement steps); CareMethod::schur or "
                "automatic solves this equation");
-        finish(A, B, false, refinements);
+        const int steps = method == CareMethod::automatic && terms_dwarf_q(A) ? compensated_steps(A, B) : 0;
+        finish(A, B, false, refinements + steps);
         result.sign_iterations = sign_iterations;
+        if (estimates == ErrorEstimates::on) estimate_errors(A, B);
         return result;
       }
     } else if (method == CareMethod::matrix_sign) {
@@ -361,17 +472,20 @@ const CareResult& CareSolver::Workspace::solve(const MatrixRef& A, const MatrixR
 
   schur_solution();
   evaluate(A, candidate);
-  const int refinements = refine(A);
+  int refinements = refine(A);
+  if (method == CareMethod::automatic && terms_dwarf_q(A)) refinements += compensated_steps(A, B);
   // eig(A − GP) are the stable eigenvalues of H for the P of its stable subspace: the Schur form
   // has them (dgees ordered them first), which saves an eigensolver. A refined P is no longer that
   // P exactly, so its spectrum is computed afresh.
   finish(A, B, refinements == 0, refinements);
   result.sign_iterations = 0;
+  if (estimates == ErrorEstimates::on) estimate_errors(A, B);
   return result;
 }
 
-CareSolver::CareSolver(const MatrixRef& Q, const MatrixRef& R, CareMethod method, StabilityProof proof)
-    : workspace_(std::make_unique<Workspace>(Q, R, method, proof)) {}
+CareSolver::CareSolver(const MatrixRef& Q, const MatrixRef& R, CareMethod method, StabilityProof proof,
+                       ErrorEstimates estimates)
+    : workspace_(std::make_unique<Workspace>(Q, R, method, proof, estimates)) {}
 
 CareSolver::~CareSolver() = default;
 
@@ -386,9 +500,9 @@ const CareResult& CareSolver::solve(const MatrixRef& A, const MatrixRef& B) {
 }
 
 CareResult solve_care(const MatrixRef& A, const MatrixRef& B, const MatrixRef& Q, const MatrixRef& R,
-                      CareMethod method) {
+                      CareMethod method, ErrorEstimates estimates) {
   care::check_inputs(A, B, Q, R);
-  return CareSolver(Q, R, method).solve(A, B);
+  return CareSolver(Q, R, method, StabilityProof::spectrum, estimates).solve(A, B);
 }
 
 }  // namespace thetad

@@ -35,7 +35,10 @@ namespace thetad {
 enum class CareMethod {
   // The matrix sign function, and Laub's Schur method whenever the sign iteration fails (a
   // Hamiltonian eigenvalue on or near the imaginary axis, no stabilizing solution) or its
-  // solution is not backward stable: the speed of the first, the diagnostics of the second.
+  // solution is not backward stable: the speed of the first, the diagnostics of the second. Then,
+  // on equations whose terms dwarf Q (weights spanning decades), one Newton step with the
+  // residual in compensated arithmetic (care_refinement.hpp), which brings the forward error to
+  // that of SLICOT SB02OD or below (docs/performance.md).
   automatic,
   // Newton's iteration for sign(H); P from the null space of sign(H) + I (Roberts 1971, Byers
   // 1987). 8–13 inversions of the 2n×2n H instead of an ordered Schur form: faster at the
@@ -55,8 +58,10 @@ class CareSolver {
   // Q n×n symmetric positive semi-definite, R m×m symmetric positive definite (checked). The
   // proof only matters on the matrix-sign path: the Schur method has the closed-loop spectrum for
   // free, unless a Newton refinement moved P.
+  // estimates: whether solve() fills CareResult::forward_error and condition (its cost there).
   CareSolver(const Eigen::Ref<const Eigen::MatrixXd>& Q, const Eigen::Ref<const Eigen::MatrixXd>& R,
-             CareMethod method = CareMethod::automatic, StabilityProof proof = StabilityProof::spectrum);
+             CareMethod method = CareMethod::automatic, StabilityProof proof = StabilityProof::spectrum,
+             ErrorEstimates estimates = ErrorEstimates::off);
   ~CareSolver();
   CareSolver(const CareSolver& other);
   CareSolver& operator=(const CareSolver&) = delete;
@@ -70,12 +75,13 @@ class CareSolver {
   std::unique_ptr<Workspace> workspace_;
 };
 
-// The direct solver for a one-off equation: CareSolver(Q, R, method).solve(A, B); no initial guess
-// needed.
+// The direct solver for a one-off equation: CareSolver(Q, R, method, spectrum, estimates).solve(A,
+// B); no initial guess needed.
 CareResult solve_care(const Eigen::Ref<const Eigen::MatrixXd>& A,
                       const Eigen::Ref<const Eigen::MatrixXd>& B,
                       const Eigen::Ref<const Eigen::MatrixXd>& Q,
                       const Eigen::Ref<const Eigen::MatrixXd>& R,
-                      CareMethod method = CareMethod::automatic);
+                      CareMethod method = CareMethod::automatic,
+                      ErrorEstimates estimates = ErrorEstimates::off);
 
 }  // namespace thetad

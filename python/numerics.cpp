@@ -33,7 +33,8 @@ MatrixArgument square(py::handle value, const std::string& what) {
 }
 
 // The four matrices of A'P + PA − PBR⁻¹B'P + Q = 0, shapes checked against A and B.
-CareResult solve(const char* function, py::handle a, py::handle b, py::handle q, py::handle r, const std::string& method) {
+CareResult solve(const char* function, py::handle a, py::handle b, py::handle q, py::handle r, const std::string& method,
+                 bool estimates) {
   const std::string name = function;
   const MatrixArgument A = square(a, name + ": A");
   const Eigen::Index n = A.rows();
@@ -43,7 +44,8 @@ CareResult solve(const char* function, py::handle a, py::handle b, py::handle q,
   const MatrixArgument R(r, name + ": R", m, m);
   const CareMethod chosen = care_method(method);
   py::gil_scoped_release unlocked;
-  return solve_care(A.matrix(), B.matrix(), Q.matrix(), R.matrix(), chosen);
+  return solve_care(A.matrix(), B.matrix(), Q.matrix(), R.matrix(), chosen,
+                    estimates ? ErrorEstimates::on : ErrorEstimates::off);
 }
 
 }  // namespace
@@ -59,6 +61,11 @@ void bind_numerics(py::module_& module) {
       .def_readonly("iterations", &CareResult::iterations, "Newton refinement steps after the direct solve")
       .def_readonly("sign_iterations", &CareResult::sign_iterations,
                     "inversions of the matrix-sign iteration (0 when P came from the Schur form)")
+      .def_readonly("forward_error", &CareResult::forward_error,
+                    "estimate of ‖P − P_exact‖_F / ‖P_exact‖_F (care(..., estimates=True); NaN otherwise)")
+      .def_readonly("condition", &CareResult::condition,
+                    "relative condition number of P, bounded as in docs/care-estimates.md (care(..., "
+                    "estimates=True); NaN otherwise)")
       .def("__iter__", [](const CareResult& r) { return py::iter(py::make_tuple(r.K, r.P, r.closed_loop_eigenvalues)); })
       .def("__repr__", [](const CareResult& r) {
         return "CareResult(n=" + std::to_string(r.P.rows()) + ", m=" + std::to_string(r.K.rows()) +
@@ -67,16 +74,18 @@ void bind_numerics(py::module_& module) {
 
   module.def(
       "care",
-      [](py::handle A, py::handle B, py::handle Q, py::handle R, const std::string& method) {
-        return solve("care", A, B, Q, R, method);
+      [](py::handle A, py::handle B, py::handle Q, py::handle R, const std::string& method, bool estimates) {
+        return solve("care", A, B, Q, R, method, estimates);
       },
       py::arg("A"), py::arg("B"), py::arg("Q"), py::arg("R"), py::arg("method") = "automatic",
+      py::arg("estimates") = false,
       "Solves A'P + PA − PBR⁻¹B'P + Q = 0 for the stabilizing P. method: 'automatic' (the matrix sign "
-      "function, Laub's Schur method when it cannot answer), 'matrix_sign' or 'schur'. Raises thetad.Error "
+      "function, Laub's Schur method when it cannot answer), 'matrix_sign' or 'schur'. estimates=True also "
+      "fills the result's forward_error and condition (docs/care-estimates.md). Raises thetad.Error "
       "naming the broken precondition (not stabilizable, Hamiltonian eigenvalues on the imaginary axis, ...).");
   module.def(
       "lqr",
-      [](py::handle A, py::handle B, py::handle Q, py::handle R) { return solve("lqr", A, B, Q, R, "automatic"); },
+      [](py::handle A, py::handle B, py::handle Q, py::handle R) { return solve("lqr", A, B, Q, R, "automatic", false); },
       py::arg("A"), py::arg("B"), py::arg("Q"), py::arg("R"),
       "The infinite-horizon LQR of ẋ = Ax + Bu with cost ∫ x'Qx + u'Ru: K, P, eigenvalues = thetad.lqr(A, B, Q, R).");
   module.def(

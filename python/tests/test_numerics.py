@@ -51,6 +51,22 @@ def test_care_agrees_with_scipy(method):
         assert result.residual < 1e-10
 
 
+def test_care_estimates_are_off_unless_asked_for():
+    """forward_error and condition: NaN by default; with estimates=True the forward-error estimate of a
+    well-conditioned problem (CAREX 1.1: P = [[2, 1], [1, 2]] exactly) is at rounding level."""
+    A = np.array([[0.0, 1.0], [0.0, 0.0]])
+    B = np.array([[0.0], [1.0]])
+    Q = np.diag([1.0, 2.0])
+    R = np.eye(1)
+    plain = thetad.care(A, B, Q, R)
+    assert np.isnan(plain.forward_error) and np.isnan(plain.condition)
+    estimated = thetad.care(A, B, Q, R, estimates=True)
+    np.testing.assert_array_equal(estimated.P, plain.P)
+    error = np.linalg.norm(estimated.P - np.array([[2.0, 1.0], [1.0, 2.0]])) / np.linalg.norm([[2.0, 1.0], [1.0, 2.0]])
+    assert error / 10 <= estimated.forward_error <= 1e-14
+    assert 0 < estimated.condition < 1e3
+
+
 def test_lqr_on_the_helicopter_agrees_with_scipy():
     F, B, Q, R = hover_problem()
     P_scipy = scipy.linalg.solve_continuous_are(F, B, Q, R)

@@ -9,16 +9,15 @@
 #include <complex>
 #include <functional>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <map>
 #include <random>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "core/error.hpp"
 #include "tests/core/care_checks.hpp"
+#include "tests/core/care_fixture.hpp"
 #include "tests/error_message.hpp"
 
 namespace thetad {
@@ -30,6 +29,8 @@ using ::testing::HasSubstr;
 using testing::error_message;
 using testing::scalar;
 using testing::expect_valid_care;
+using testing::Fixture;
+using testing::read_fixture;
 
 
 const std::pair<CareMethod, const char*> kMethods[] = {
@@ -180,36 +181,6 @@ TEST(SolveCare, PaperSizedCaseMatchesSpec) {
     SCOPED_TRACE(method_name);
     expect_paper_solution(plant, solve_care(plant.A, plant.B, plant.Q, plant.R, method));
   }
-}
-
-// One CAREX example as written by scripts/make_carex_fixtures.py.
-struct Fixture {
-  std::string name;
-  std::map<std::string, MatrixXd> matrices;
-};
-
-Fixture read_fixture(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  Fixture fixture;
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream header(line);
-    std::string key;
-    header >> key;
-    if (key == "name") {
-      header >> fixture.name;
-    } else if (key.size() > 0 && std::isupper(static_cast<unsigned char>(key[0]))) {
-      Eigen::Index rows = 0;
-      Eigen::Index cols = 0;
-      header >> rows >> cols;
-      MatrixXd M(rows, cols);
-      for (Eigen::Index i = 0; i < rows; ++i)
-        for (Eigen::Index j = 0; j < cols; ++j) in >> M(i, j);
-      fixture.matrices[key] = M;
-    }
-  }
-  return fixture;
 }
 
 // Per example: the residual tolerance for expect_valid_care and the relative distance allowed to
