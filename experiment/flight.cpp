@@ -5,6 +5,7 @@
 
 #include "controllers/registry.hpp"
 #include "core/error.hpp"
+#include "core/helicopter/designed_weights.hpp"
 #include "core/text_file.hpp"
 #include "settings/settings.hpp"
 #include "experiment/build_info.hpp"
@@ -141,11 +142,13 @@ std::optional<sim::DeviationCost> Flight::deviation_cost() const {
   const std::shared_ptr<const TrimSource> trims =
       trims_->get(*plant_, scenario_.trajectory, settings_.duration, settings_.controller_period());
   if (!trims) return std::nullopt;
-  const DesignDefaults weights = plant_->design_defaults();
-  return sim::DeviationCost(*plant_, trims,
-                            {weights.state_weights, weights.input_weights,
-                             "the plant's design weights (the helicopter: the paper's Q, R, docs/model.md §7)"},
-                            settings_.controller_period());
+  // One Q, R for every controller: the helicopter's designed set, another plant's design weights.
+  const DesignDefaults defaults = plant_->design_defaults();
+  const sim::DeviationWeights weights =
+      helicopter_ ? sim::DeviationWeights{heli::designed_state_weights(), heli::designed_input_weights(),
+                                          "the designed weights of scenarios/designed.settings.yaml (docs/weights.md)"}
+                  : sim::DeviationWeights{defaults.state_weights, defaults.input_weights, "the plant's design weights"};
+  return sim::DeviationCost(*plant_, trims, weights, settings_.controller_period());
 }
 
 PreparedController Flight::prepare(const ControllerSpec& spec) const {

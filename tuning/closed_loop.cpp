@@ -9,17 +9,30 @@
 
 namespace thetad::tuning {
 
-const char* metric_name(Metric metric) { return metric == Metric::cost ? "cost" : "rms-error"; }
+const char* metric_name(Metric metric) {
+  switch (metric) {
+    case Metric::cost: return "cost";
+    case Metric::rms_error: return "rms-error";
+    default: return "cost-dev";
+  }
+}
 
 Metric parse_metric(const std::string& name) {
   if (name == "cost") return Metric::cost;
   if (name == "rms-error") return Metric::rms_error;
-  throw Error("tuning: unknown metric '" + name + "' (known: cost, rms-error)");
+  if (name == "cost-dev") return Metric::cost_dev;
+  throw Error("tuning: unknown metric '" + name + "' (known: cost, rms-error, cost-dev)");
 }
 
 double metric_value(const sim::RunSummary& summary, Metric metric) {
+  if (metric == Metric::cost_dev && !summary.cost_dev)
+    throw Error("tuning: the metric cost-dev needs J_dev, which this plant's runs do not have (no trims)");
   if (summary.status != sim::RunStatus::completed) return std::numeric_limits<double>::infinity();
-  return metric == Metric::cost ? summary.cost : summary.rms_tracking_error.norm();
+  switch (metric) {
+    case Metric::cost: return summary.cost;
+    case Metric::rms_error: return summary.rms_tracking_error.norm();
+    default: return *summary.cost_dev;
+  }
 }
 
 double mean_metric(const std::vector<sim::RunSummary>& summaries, Metric metric) {

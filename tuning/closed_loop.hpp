@@ -24,11 +24,13 @@ namespace thetad::tuning {
 enum class Metric {
   cost,       // J of Eq. (32) (sim::RunSummary::cost)
   rms_error,  // the RMS 3-D position error: the norm of the per-axis RMS tracking errors (m)
+  cost_dev,   // J_dev, the comparison's score (sim::RunSummary::cost_dev, docs/model.md §7.2)
 };
-const char* metric_name(Metric metric);  // "cost", "rms-error"
+const char* metric_name(Metric metric);  // "cost", "rms-error", "cost-dev"
 // Throws thetad::Error naming the known metrics.
 Metric parse_metric(const std::string& name);
 // The metric of a run; +∞ unless it completed (a diverged draw is worse than any that flew).
+// Throws thetad::Error for J_dev of a run without it (a plant without trims).
 double metric_value(const sim::RunSummary& summary, Metric metric);
 // The mean metric over `summaries`; +∞ when one of them did not complete.
 double mean_metric(const std::vector<sim::RunSummary>& summaries, Metric metric);

@@ -123,7 +123,9 @@ tuning::FitResult search(const TuneArguments& a, const Flight& flight, const YAM
   };
   if (report.objective.objective == tuning::Objective::closed_loop) {
     const tuning::FitResult fit = tuning::fit(draws, report.objective.training_seeds, report.objective.metric, options());
-    report.figure = std::string("mean_") + (report.objective.metric == tuning::Metric::cost ? "cost" : "rms_error_m");
+    const tuning::Metric metric = report.objective.metric;
+    report.figure = std::string("mean_") +
+                    (metric == tuning::Metric::cost ? "cost" : metric == tuning::Metric::rms_error ? "rms_error_m" : "cost_dev");
     report.figure_default = fit.start_residual;
     report.figure_tuned = fit.residual;
     return fit;
@@ -237,8 +239,9 @@ CLI::App* add_tune_command(CLI::App& app, TuneArguments& a) {
   tune->add_option("--entry-floor", a.entry_floor,
                    "entries: an entry P_rc is scaled by max(|P_rc|, floor * sqrt(P_rr P_cc))")
       ->capture_default_str();
-  tune->add_option("--metric", a.metric, "closed-loop, and the figure of merit: cost (J) or rms-error (m)")
-      ->check(CLI::IsMember({"cost", "rms-error"}))
+  tune->add_option("--metric", a.metric,
+                   "closed-loop, and the figure of merit: cost (J), rms-error (m) or cost-dev (J_dev, docs/model.md §7.2)")
+      ->check(CLI::IsMember({"cost", "rms-error", "cost-dev"}))
       ->capture_default_str();
   tune->add_option("--draws", a.draws, "closed-loop: training draws, seeds S ... S+draws-1 (S: --seed or the scenario's)")
       ->check(CLI::Range(1, 100000))

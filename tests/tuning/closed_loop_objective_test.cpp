@@ -40,12 +40,16 @@ TEST(ClosedLoop, MetricsAndTheirNames) {
   EXPECT_EQ(mean_metric({s, diverged}, Metric::cost), std::numeric_limits<double>::infinity());
   EXPECT_EQ(parse_metric(metric_name(Metric::rms_error)), Metric::rms_error);
   EXPECT_EQ(parse_metric("cost"), Metric::cost);
+  EXPECT_THROW(metric_value(s, Metric::cost_dev), Error);  // a run without J_dev
+  s.cost_dev = 3.25;
+  EXPECT_EQ(metric_value(s, Metric::cost_dev), 3.25);
+  EXPECT_EQ(parse_metric(metric_name(Metric::cost_dev)), Metric::cost_dev);
   EXPECT_THROW(
       {
         try {
           parse_metric("speed");
         } catch (const Error& error) {
-          EXPECT_THAT(error.what(), HasSubstr("unknown metric 'speed' (known: cost, rms-error)"));
+          EXPECT_THAT(error.what(), HasSubstr("unknown metric 'speed' (known: cost, rms-error, cost-dev)"));
           throw;
         }
       },
