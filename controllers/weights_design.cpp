@@ -5,11 +5,13 @@
 #include <cmath>
 #include <complex>
 #include <cstdio>
+#include <limits>
 #include <numbers>
 #include <sstream>
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
+#include <Eigen/SVD>
 #include <unsupported/Eigen/MatrixFunctions>
 
 #include "controllers/linearization.hpp"

@@ -137,11 +137,23 @@ void Flight::set_keep_log(bool keep) {
 
 std::size_t Flight::log_width() const { return sim::log_schema(*plant_, *make_disturbances()).size(); }
 
-std::optional<sim::DeviationCost> Flight::deviation_cost() const {
-  if (plant_->bias_state() < 0) return std::nullopt;
-  const std::shared_ptr<const TrimSource> trims =
-      trims_->get(*plant_, scenario_.trajectory, settings_.duration, settings_.controller_period());
-  if (!trims) return std::nullopt;
+std::optional<sim::DeviationCost> Flight::deviation_cost(std::string& why_not) const {
+  if (plant_->bias_state() < 0) {
+    why_not = "none: the plant has no bias state (SdcPlant::bias_state)";
+    return std::nullopt;
+  }
+  std::shared_ptr<const TrimSource> trims;
+  try {
+    trims = trims_->get(*plant_, scenario_.trajectory, settings_.duration, settings_.controller_period());
+  } catch (const Error& error) {
+    // The run flies all the same: only its score cannot be had.
+    why_not = std::string("none: ") + error.what();
+    return std::nullopt;
+  }
+  if (!trims) {
+    why_not = "none: the plant has no trims (SdcPlant::trim_source)";
+    return std::nullopt;
+  }
   // One Q, R for every controller: the helicopter's designed set, another plant's design weights.
   const DesignDefaults defaults = plant_->design_defaults();
   const sim::DeviationWeights weights =
@@ -169,7 +181,8 @@ RunResult Flight::fly(PreparedController& prepared, Progress* progress, const st
       prepared.origin.empty() ? ControllerRegistry::instance().origin(prepared.spec.controller) : prepared.origin;
   result.provenance = provenance_;
   if (settings_.measure_compute_time) stamp_host_and_time(result.provenance);
-  std::optional<sim::DeviationCost> deviation = deviation_cost();
+  std::string no_deviation;
+  std::optional<sim::DeviationCost> deviation = deviation_cost(no_deviation);
   if (progress) progress->start(heading.empty() ? prepared.spec.label + ":" : heading, settings_.duration);
   const auto start = std::chrono::steady_clock::now();
   const auto report = [progress](double t) { progress->update(t); };
@@ -179,6 +192,7 @@ RunResult Flight::fly(PreparedController& prepared, Progress* progress, const st
                                        deviation ? &*deviation : nullptr);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   result.summary = std::move(flown.summary);
+  if (!deviation) result.summary.cost_dev_weights = no_deviation;
   result.log = std::move(flown.log);
   if (settings_.measure_compute_time) result.wall_seconds = wall;
   if (progress) {

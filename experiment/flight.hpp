@@ -91,9 +91,9 @@ class Flight {
   };
   Flight() = default;
   Flight(const ScenarioText& source, const RunControls& controls);
-  // The score J_dev of one run (docs/model.md §7.2) on the flight's trims; none for a plant
-  // without trims.
-  std::optional<sim::DeviationCost> deviation_cost() const;
+  // The score J_dev of one run (docs/model.md §7.2) on the flight's trims; none, and `why_not`
+  // says why, for a plant without trims or a reference beyond them.
+  std::optional<sim::DeviationCost> deviation_cost(std::string& why_not) const;
   // The columns of a run's log: what SimulationSettings::check_memory needs.
   std::size_t log_width() const;
 

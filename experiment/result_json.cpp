@@ -133,7 +133,7 @@ Json summary_json(const sim::RunSummary& summary) {
                     "J_dev = 1/2 sum_k (e' Q e + (u_cmd - u_r)' R (u_cmd - u_r)) T_c, e the true state's deviation "
                     "from the commanded motion and its trim, u_r the trim's input (docs/model.md §7.2); one Q, R for "
                     "every controller"},
-                   {"weights", summary.cost_dev ? Json(summary.cost_dev_weights) : Json(nullptr)},
+                   {"weights", summary.cost_dev_weights.empty() ? Json(nullptr) : Json(summary.cost_dev_weights)},
                    {"J_dev", summary.cost_dev ? Json(*summary.cost_dev) : Json(nullptr)}};
   if (summary.settings.measure_compute_time) {
     j["compute_time_ns"] = {{"note", "wall time of each control() call inside the flight, with the simulation "

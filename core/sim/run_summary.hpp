@@ -56,7 +56,7 @@ struct RunSummary {
   // and u the commanded input, by left rectangles at the controller rate.
   double cost = 0.0;
   // J_dev (sim::DeviationCost, docs/model.md §7.2) and what its weights are; none for a plant
-  // without trims.
+  // without trims or a reference beyond them, and then the weights' text says why ("none: ...").
   std::optional<double> cost_dev;
   std::string cost_dev_weights;
   // Wall time of the control() call per sample (ns); 0 when not measured.
