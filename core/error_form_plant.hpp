@@ -38,6 +38,7 @@ class ErrorFormPlant final : public SdcPlant {
   const TrimPoint& motion() const { return motion_; }
   FeedForward feedforward() const { return feedforward_; }
   const SdcPlant& plant() const { return *plant_; }
+  const std::shared_ptr<const TrimSource>& trims() const { return trims_; }
 
   int state_dim() const override { return plant_->state_dim(); }
   int input_dim() const override { return plant_->input_dim(); }

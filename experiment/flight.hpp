@@ -84,6 +84,10 @@ class Flight {
   // under `heading` ("LABEL:" when empty).
   RunResult fly(PreparedController& prepared, Progress* progress = nullptr, const std::string& heading = {}) const;
 
+  // The score J_dev of one run (docs/model.md §7.2) on the flight's trims, fresh; none, and
+  // `why_not` says why, for a plant without trims or a reference beyond them.
+  std::optional<sim::DeviationCost> deviation_cost(std::string& why_not) const;
+
  private:
   struct ScenarioText {
     std::string text;
@@ -91,9 +95,6 @@ class Flight {
   };
   Flight() = default;
   Flight(const ScenarioText& source, const RunControls& controls);
-  // The score J_dev of one run (docs/model.md §7.2) on the flight's trims; none, and `why_not`
-  // says why, for a plant without trims or a reference beyond them.
-  std::optional<sim::DeviationCost> deviation_cost(std::string& why_not) const;
   // The columns of a run's log: what SimulationSettings::check_memory needs.
   std::size_t log_width() const;
 

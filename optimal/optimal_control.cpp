@@ -54,6 +54,12 @@ class ShootingNlp final : public Ipopt::TNLP {
     std::fill(x_u, x_u + n, kNoBound);
     const Eigen::VectorXd first = interval_.initial_node();
     for (int i = 0; i < d_; ++i) x_l[i] = x_u[i] = first[i];
+    if (problem_.bounded()) {
+      for (int k = 0; k < intervals_; ++k) {
+        Eigen::Map<Eigen::VectorXd>(x_l + node_offset(k) + d_, m_) = problem_.input_lower;
+        Eigen::Map<Eigen::VectorXd>(x_u + node_offset(k) + d_, m_) = problem_.input_upper;
+      }
+    }
     std::fill(g_l, g_l + m, 0.0);
     std::fill(g_u, g_u + m, 0.0);
     return true;

@@ -40,7 +40,7 @@ struct OptimalControlSettings {
 struct OptimalControlSolution {
   IpoptOutcome outcome;
   int iterations = 0;
-  double cost = 0.0;                  // J of the solution: the sum of the intervals' costs from its nodes
+  double cost = 0.0;                  // J (or J_dev) of the solution: the sum of the intervals' costs from its nodes
   double constraint_violation = 0.0;  // largest |node − what the previous interval reaches|
   ShootingTrajectory shooting;
   // Every controller sample of the horizon, each interval propagated from its node: t, x (n), u (m),
@@ -49,7 +49,8 @@ struct OptimalControlSolution {
 };
 
 // Solves `problem` by multiple shooting with Ipopt from `start`: equality constraints node_{k+1} =
-// interval map(node_k, u_k), the first node fixed at the initial state, no bounds; exact first
+// interval map(node_k, u_k), the first node fixed at the initial state, the inputs within the
+// problem's bounds if it has any; exact first
 // derivatives by ShootingInterval::linearize (sparse: one dense block per interval), Hessian by
 // L-BFGS. Throws thetad::Error for an invalid problem or start, when the plant gives no Jacobian
 // (SdcPlant::jacobian) or has no value at the start; a solve that does not converge is returned

@@ -24,6 +24,12 @@ void OptimalControlProblem::validate() const {
   sized(initial_state, n, "initial_state");
   sized(state_weights, n, "state_weights");
   sized(input_weights, m, "input_weights");
+  if (input_lower.size() != 0 || input_upper.size() != 0) {
+    sized(input_lower, m, "input_lower");
+    sized(input_upper, m, "input_upper");
+    if ((input_lower.array() > input_upper.array()).any()) fail("input_lower exceeds input_upper");
+  }
+  if (deviation_trims && plant->bias_state() < 0) fail("J_dev needs a plant with a bias state (SdcPlant::bias_state)");
   if ((state_weights.array() < 0.0).any() || (input_weights.array() < 0.0).any())
     fail("the weights must be non-negative");
   if (!(dt > 0.0) || !std::isfinite(dt)) fail("dt must be positive and finite");

@@ -1,10 +1,12 @@
 #pragma once
 
+#include <memory>
 #include <optional>
 
 #include <Eigen/Core>
 
 #include "core/control_law.hpp"
+#include "core/feedforward.hpp"
 #include "core/sdc_plant.hpp"
 
 namespace thetad {
@@ -16,8 +18,11 @@ namespace thetad {
 //
 // with v_k the plant's tracking vector at controller sample k (SdcPlant::tracking_vector, the
 // reference's integral by the PositionIntegral rule) and Q, R diagonal: the J of
-// sim::RunSummary::cost and sim::PlantRun::cost, sample for sample. The input is further held over
-// shooting intervals of `interval_periods` controller periods: the transcription's unknowns.
+// sim::RunSummary::cost, sample for sample. With `deviation_trims` the cost is J_dev instead
+// (sim::RunSummary::cost_dev, docs/model.md §7.2): v_k − V*_k and u_k − u_r,k are priced, V* and
+// u_r the commanded motion and its trim as sim::DeviationCost takes them. The input is further held
+// over shooting intervals of `interval_periods` controller periods (the transcription's unknowns),
+// within [input_lower, input_upper] when those are given.
 struct OptimalControlProblem {
   const SdcPlant* plant = nullptr;
   const ReferenceTrajectory* reference = nullptr;
@@ -27,6 +32,10 @@ struct OptimalControlProblem {
   int first_sample = 0;
   Eigen::VectorXd state_weights;  // diagonal of Q (n)
   Eigen::VectorXd input_weights;  // diagonal of R (m)
+  // Set: the cost is J_dev on these trims (the plant needs a bias state); unset: J.
+  std::shared_ptr<const TrimSource> deviation_trims;
+  // Both empty (no bounds) or both m entries, lower ≤ upper: the actuators' magnitude limits.
+  Eigen::VectorXd input_lower, input_upper;
   double dt = 1e-3;               // RK4 step (s): the simulator's
   int controller_period_steps = 1;  // T_c = dt * controller_period_steps: where J samples
   int interval_periods = 1;       // controller periods per shooting interval (u held over it)
@@ -45,6 +54,7 @@ struct OptimalControlProblem {
   double start_time() const { return first_sample * controller_period(); }
   // The entries of a shooting node: the plant state, then the sampled integral (3) when priced.
   int node_dim() const;
+  bool bounded() const { return input_lower.size() > 0; }
 
   // Throws thetad::Error naming the first field that is missing, mis-sized or out of range.
   void validate() const;

@@ -8,21 +8,17 @@
 #include "core/error.hpp"
 #include "core/helicopter/state.hpp"
 #include "core/sim/helicopter_disturbances.hpp"
-#include "core/sim/run_metrics.hpp"
+#include "optimal/optimum_run.hpp"
 #include "optimal/shooting_interval.hpp"
 
 namespace thetad {
+
+const char* cost_name(OptimalCost cost) { return cost == OptimalCost::deviation ? "J_dev" : "J"; }
 
 namespace {
 
 using heli::kInputDim;
 using heli::kStateDim;
-
-Eigen::Index column(const std::string& header) {
-  const auto& schema = sim::helicopter_log_schema();
-  const auto found = std::find_if(schema.begin(), schema.end(), [&](const auto& c) { return c.header() == header; });
-  return static_cast<Eigen::Index>(found - schema.begin());
-}
 
 // Whole multiples of the controller period, or an error naming the option.
 int periods_in(double seconds, double period, const char* what) {
@@ -43,10 +39,8 @@ OptimalControlProblem optimality_problem(const Flight& flight, const OptimalityO
   if (s.parameter_uncertainty || s.wind_gust.enabled || noise.measurement || noise.actuator || noise.wind_component ||
       noise.induced_velocity) {
     throw Error("optimality gap: the flight has disturbances (" + flight.disturbances() +
-                "); the optimum is that of the nominal plant: fly it ideal");
+                "); the optimum is that of the nominal plant: fly it ideal (actuator limits may stay on)");
   }
-  if (s.actuator_limits.enabled)
-    throw Error("optimality gap: the flight has actuator limits, which the optimal control problem does not model");
   if (!s.keep_log || s.log_every != 1)
     throw Error("optimality gap: the flights must log every controller sample (the warm start is read from the log)");
   const double period = s.controller_period();
@@ -75,20 +69,38 @@ OptimalControlProblem optimality_problem(const Flight& flight, const OptimalityO
   problem.interval_periods = interval_periods;
   problem.intervals = samples / interval_periods;
   problem.sampled_position_integral = heli::kXi;  // as simulate() prices J
+  if (s.actuator_limits.enabled) {
+    problem.input_lower = s.actuator_limits.lower;
+    problem.input_upper = s.actuator_limits.upper;
+  }
+  if (options.cost == OptimalCost::deviation) {
+    std::string why_not;
+    const std::optional<sim::DeviationCost> deviation = flight.deviation_cost(why_not);
+    if (!deviation) throw Error("optimality gap: this flight has no J_dev (" + why_not + "); compare on J instead");
+    problem.state_weights = deviation->weights().state;
+    problem.input_weights = deviation->weights().input;
+    problem.deviation_trims = deviation->trims();
+  }
   problem.validate();
   return problem;
 }
 
 namespace {
 
-const RunResult& warm_start_flight(const std::vector<RunResult>& flights, const std::string& label) {
+// A completed flight's cost over its whole run: J_dev or J.
+double flight_cost(const RunResult& run, OptimalCost cost) {
+  if (cost == OptimalCost::paper) return run.summary.cost;
+  return run.summary.cost_dev.value_or(std::numeric_limits<double>::quiet_NaN());
+}
+
+const RunResult& warm_start_flight(const std::vector<RunResult>& flights, const std::string& label, OptimalCost cost) {
   const RunResult* chosen = nullptr;
   for (const auto& flight : flights) {
     if (!label.empty() && flight.spec.label != label) continue;
     if (!label.empty() && !flight.completed())
       throw Error("optimality gap: the warm-start flight " + label + " did not complete (" +
                   status_text(flight.summary) + "): start from another");
-    if (flight.completed() && (chosen == nullptr || flight.summary.cost < chosen->summary.cost)) chosen = &flight;
+    if (flight.completed() && (chosen == nullptr || flight_cost(flight, cost) < flight_cost(*chosen, cost))) chosen = &flight;
   }
   if (chosen == nullptr) {
     throw Error(label.empty() ? "optimality gap: no controller completed the horizon: nothing to warm start from"
@@ -97,80 +109,23 @@ const RunResult& warm_start_flight(const std::vector<RunResult>& flights, const 
   return *chosen;
 }
 
-// The optimum as a run of the flight: its samples as log rows, its figures by the run metrics.
-RunResult optimum_run(const Flight& flight, const OptimalControlProblem& problem, const OptimalControlSolution& solution,
-                      const std::string& warm_start, const OptimalityOptions& options, const std::string& label) {
-  RunResult run;
-  run.spec.label = label;
-  run.spec.controller = "optimal";
-  run.controller_origin = "Ipopt, multiple shooting (thetad optimal)";
-  run.provenance = flight.provenance();
-  YAML::Node& settings = run.settings;
-  settings["transcription"] = "multiple shooting on the RK4 plant, input held over each control interval";
-  settings["start"] = problem.start_time();
-  settings["control_interval"] = options.control_interval;
-  settings["intervals"] = problem.intervals;
-  settings["derivatives"] = "exact: RK4 sensitivities with the plant's Jacobian (automatic differentiation); L-BFGS Hessian";
-  settings["warm_start"] = warm_start;
-  settings["ipopt_status"] = solution.outcome.status;
-  settings["ipopt_iterations"] = solution.iterations;
-  settings["ipopt_tolerance"] = options.solver.ipopt.tolerance;
-  settings["max_defect"] = solution.constraint_violation;
-
-  sim::RunSummary& summary = run.summary;
-  summary.controller = "optimal";
-  summary.settings = flight.settings();
-  summary.settings.measure_compute_time = false;  // no control step to time
-  summary.model_options = flight.model().options().to_string();
-  summary.end_time = problem.start_time() + problem.horizon();
-  if (!solution.outcome.converged) {
-    summary.status = sim::RunStatus::failed;
-    summary.reason = "Ipopt did not converge (" + solution.outcome.status + ")";
-  }
-  const double period = problem.controller_period();
-  summary.tracked = flight.model().tracked_states();
-  summary.inputs = flight.model().input_columns();
-  summary.saturation = sim::SaturationCounts::none(kInputDim);
-  sim::RunMetrics metrics(problem.state_weights, problem.input_weights, 3, period, problem.samples(), false);
-  run.log.columns = sim::helicopter_log_schema();
-  const auto columns = static_cast<Eigen::Index>(run.log.columns.size());
-  run.log.values.assign(static_cast<std::size_t>(problem.samples() * columns), 0.0);
-  const Eigen::Index measured = column("meas_x_p_m"), command = column("cmd_T_mr_N"), applied = column("app_T_mr_N"),
-                     rotor = column("Omega_mr_rad_per_s");
-  for (Eigen::Index k = 0; k < solution.samples.rows(); ++k) {
-    const double t = solution.samples(k, 0);
-    const Eigen::VectorXd x = solution.samples.row(k).segment(1, kStateDim).transpose();
-    const Eigen::VectorXd u = solution.samples.row(k).segment(1 + kStateDim, kInputDim).transpose();
-    const Eigen::VectorXd v = solution.samples.row(k).tail(kStateDim).transpose();
-    const Eigen::Vector3d reference = problem.reference->position(t);
-    metrics.add(Eigen::VectorXd(x.head<3>() - reference), v, u, 0);
-    Eigen::Map<Eigen::RowVectorXd> row(run.log.values.data() + k * columns, columns);
-    row(0) = t;
-    row.segment<3>(1) = reference.transpose();
-    row.segment(4, kStateDim) = x.transpose();
-    row.segment(measured, kStateDim) = x.transpose();  // the transcription has no sensors
-    row.segment(command, kInputDim) = u.transpose();
-    row.segment(applied, kInputDim) = u.transpose();
-    row(rotor) = flight.model().rotor_speed(x, u[heli::kTmr]);
-  }
-  metrics.finish(summary);
-  return run;
-}
-
-// The states and commands of a logged flight, one row per controller sample.
+// The states, commands and applied inputs of a logged flight, one row per controller sample: the
+// commands are what its cost priced, the applied inputs what moved it (within the limits).
 struct Logged {
-  Eigen::MatrixXd states, inputs;
+  Eigen::MatrixXd states, commands, applied;
 
-  explicit Logged(const RunResult& run) : states(run.log.rows(), kStateDim), inputs(run.log.rows(), kInputDim) {
-    const Eigen::Index state = column("x_p_m"), command = column("cmd_T_mr_N");
+  explicit Logged(const RunResult& run)
+      : states(run.log.rows(), kStateDim), commands(run.log.rows(), kInputDim), applied(run.log.rows(), kInputDim) {
+    const Eigen::Index state = sim::helicopter_log_column("x_p_m"), command = sim::helicopter_log_column("cmd_T_mr_N"),
+                       input = sim::helicopter_log_column("app_T_mr_N");
     for (Eigen::Index k = 0; k < run.log.rows(); ++k) {
       states.row(k) = run.log.row(k).segment(state, kStateDim);
-      inputs.row(k) = run.log.row(k).segment(command, kInputDim);
+      commands.row(k) = run.log.row(k).segment(command, kInputDim);
+      applied.row(k) = run.log.row(k).segment(input, kInputDim);
     }
   }
   // From the segment's first sample on.
-  Eigen::MatrixXd states_from(int first) const { return states.bottomRows(states.rows() - first); }
-  Eigen::MatrixXd inputs_from(int first) const { return inputs.bottomRows(inputs.rows() - first); }
+  static Eigen::MatrixXd from(const Eigen::MatrixXd& rows, int first) { return rows.bottomRows(rows.rows() - first); }
 };
 
 // The segment from the flight's state at its start: that state, and the sampled integral of the
@@ -194,7 +149,8 @@ double segment_cost(const OptimalControlProblem& problem, const Logged& flight) 
   samples.interval_periods = 1;
   samples.intervals = problem.samples();
   const ShootingTrajectory nodes =
-      shooting_guess(samples, flight.states_from(problem.first_sample), flight.inputs_from(problem.first_sample));
+      shooting_guess(samples, Logged::from(flight.states, problem.first_sample),
+                     Logged::from(flight.commands, problem.first_sample));
   ShootingInterval interval(samples);
   Eigen::VectorXd next(samples.node_dim());
   double cost = 0.0;
@@ -203,31 +159,51 @@ double segment_cost(const OptimalControlProblem& problem, const Logged& flight) 
   return cost;
 }
 
-SegmentOptimum solve_segment(const Flight& flight, const OptimalControlProblem& segment, const RunResult& from,
-                             const OptimalityOptions& options, Progress* progress, const std::string& label) {
-  SegmentOptimum optimum;
-  optimum.from = from.spec.label;
-  const Logged log(from);
-  const int first = segment.first_sample;
-  optimum.problem = first == 0 ? segment : from_flight(segment, log);
+// One solve from `start`, with a progress display, as a run labelled `label`.
+SolvedOptimum solve(const Flight& flight, const OptimalControlProblem& problem, const ShootingTrajectory& start,
+                    const std::string& from, const OptimalityOptions& options, Progress* progress,
+                    const std::string& label) {
   OptimalControlSettings solver = options.solver;
   if (progress) {
-    progress->start(label + " (Ipopt from " + optimum.from + "):", solver.ipopt.max_iterations, "Ipopt iterations at most");
+    progress->start(label + " (Ipopt from " + from + "):", solver.ipopt.max_iterations, "Ipopt iterations at most");
     solver.progress = [progress, outer = options.solver.progress](int iteration, double objective, double defect) {
       progress->update(iteration);
       if (outer) outer(iteration, objective, defect);
     };
   }
   const auto started = std::chrono::steady_clock::now();
-  optimum.solution = solve_optimal_control(
-      optimum.problem, shooting_guess(optimum.problem, log.states_from(first), log.inputs_from(first)), solver);
+  SolvedOptimum solved;
+  solved.solution = solve_optimal_control(problem, start, solver);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   if (progress)
-    progress->finish(optimum.solution.outcome.status + ", " + std::to_string(optimum.solution.iterations) + " iterations");
-  optimum.run = optimum_run(flight, optimum.problem, optimum.solution, optimum.from, options, label);
+    progress->finish(solved.solution.outcome.status + ", " + std::to_string(solved.solution.iterations) + " iterations");
+  solved.run = optimum_run(flight, problem, solved.solution, from, options.control_interval,
+                           options.solver.ipopt.tolerance, label);
   if (flight.settings().measure_compute_time) {
-    optimum.run.wall_seconds = wall;
-    stamp_host_and_time(optimum.run.provenance);
+    solved.run.wall_seconds = wall;
+    stamp_host_and_time(solved.run.provenance);
+  }
+  return solved;
+}
+
+// From the flight `from` (its applied inputs, within any bounds); with bounds, then without them
+// from the bounded optimum, so that the unbounded solve starts where the bounded one ended.
+SegmentOptimum solve_segment(const Flight& flight, const OptimalControlProblem& segment, const RunResult& from,
+                             const OptimalityOptions& options, Progress* progress, const std::string& suffix) {
+  SegmentOptimum optimum;
+  optimum.from = from.spec.label;
+  const Logged log(from);
+  const int first = segment.first_sample;
+  optimum.problem = first == 0 ? segment : from_flight(segment, log);
+  const ShootingTrajectory start =
+      shooting_guess(optimum.problem, Logged::from(log.states, first), Logged::from(log.applied, first));
+  optimum.optimum = solve(flight, optimum.problem, start, optimum.from, options, progress, "optimal" + suffix);
+  if (optimum.problem.bounded()) {
+    OptimalControlProblem unbounded = optimum.problem;
+    unbounded.input_lower.resize(0);
+    unbounded.input_upper.resize(0);
+    optimum.unbounded = solve(flight, unbounded, optimum.optimum.solution.shooting, optimum.optimum.run.spec.label,
+                              options, progress, "optimal-unbounded" + suffix);
   }
   return optimum;
 }
@@ -242,16 +218,30 @@ const SegmentOptimum* OptimalityGap::optimum_for(std::size_t i) const {
   return nullptr;
 }
 
+double SegmentOptimum::cost(OptimalCost kind) const { return flight_cost(optimum.run, kind); }
+
+double SegmentOptimum::unbounded_cost(OptimalCost kind) const {
+  return unbounded ? flight_cost(unbounded->run, kind) : std::numeric_limits<double>::quiet_NaN();
+}
+
 double OptimalityGap::gap_percent(std::size_t i) const {
   const SegmentOptimum* optimum = optimum_for(i);
   if (optimum == nullptr) return std::numeric_limits<double>::quiet_NaN();
-  const double best = optimum->run.summary.cost;
+  const double best = optimum->cost(cost);
+  return 100.0 * (costs.at(i) - best) / best;
+}
+
+double OptimalityGap::unbounded_gap_percent(std::size_t i) const {
+  const SegmentOptimum* optimum = optimum_for(i);
+  if (optimum == nullptr) return std::numeric_limits<double>::quiet_NaN();
+  const double best = optimum->unbounded_cost(cost);
   return 100.0 * (costs.at(i) - best) / best;
 }
 
 OptimalityGap optimality_gap(const Flight& flight, std::vector<PreparedController>& controllers,
                              const OptimalityOptions& options, Progress* progress) {
   OptimalityGap gap;
+  gap.cost = options.cost;
   const OptimalControlProblem segment = optimality_problem(flight, options);
   if (!options.warm_start.empty() && segment.first_sample > 0) {
     throw Error("optimality gap: a warm start applies to a segment from t = 0; from mid-flight each completed flight "
@@ -268,18 +258,18 @@ OptimalityGap optimality_gap(const Flight& flight, std::vector<PreparedControlle
     if (!run.completed())
       gap.costs.push_back(std::numeric_limits<double>::quiet_NaN());
     else if (segment.first_sample == 0)
-      gap.costs.push_back(run.summary.cost);
+      gap.costs.push_back(flight_cost(run, options.cost));
     else
       gap.costs.push_back(segment_cost(from_flight(segment, Logged(run)), Logged(run)));
   }
   if (segment.first_sample == 0) {
-    const RunResult& start = warm_start_flight(gap.flights, options.warm_start);
-    gap.optima.push_back(solve_segment(flight, segment, start, options, progress, "optimal"));
+    const RunResult& start = warm_start_flight(gap.flights, options.warm_start, options.cost);
+    gap.optima.push_back(solve_segment(flight, segment, start, options, progress, ""));
     return gap;
   }
   for (const auto& run : gap.flights) {
     if (run.completed())
-      gap.optima.push_back(solve_segment(flight, segment, run, options, progress, "optimal-from-" + run.spec.label));
+      gap.optima.push_back(solve_segment(flight, segment, run, options, progress, "-from-" + run.spec.label));
   }
   if (gap.optima.empty()) throw Error("optimality gap: no controller completed the flight: no state to start the segment from");
   return gap;

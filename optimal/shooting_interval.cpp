@@ -1,14 +1,34 @@
 #include "optimal/shooting_interval.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
 #include "core/error.hpp"
 
 namespace thetad {
+
+std::vector<Reference> sampled_references(const OptimalControlProblem& problem) {
+  const double period = problem.controller_period();
+  PositionIntegral integral;
+  std::vector<Reference> references;
+  references.reserve(static_cast<std::size_t>(problem.samples()));
+  for (int k = 0; k < problem.first_sample + problem.samples(); ++k) {
+    const double t = k * period;
+    const Eigen::Vector3d position = problem.reference->position(t);
+    if (k >= problem.first_sample)
+      references.push_back({position, integral.value, problem.reference->velocity(t), problem.reference->acceleration(t)});
+    integral.accumulate(position, period);
+  }
+  return references;
+}
 
 ShootingInterval::ShootingInterval(const OptimalControlProblem& problem)
     : problem_(problem),
       n_(problem.plant->state_dim()),
       m_(problem.plant->input_dim()),
       node_dim_(problem.node_dim()),
+      references_(sampled_references(problem)),
       tracking_gain_(n_, n_),
       workspace_(n_),
       x_(n_),
@@ -20,17 +40,21 @@ ShootingInterval::ShootingInterval(const OptimalControlProblem& problem)
       stage_sensitivity_(n_, n_ + m_),
       dfdx_(n_, n_),
       dfdu_(n_, m_),
-      cost_gradient_(n_ + m_) {
+      cost_gradient_(n_ + m_),
+      error_(n_),
+      input_error_(m_),
+      aim_state_(n_),
+      aim_input_(m_),
+      probe_(n_),
+      state_plus_(n_),
+      input_plus_(m_),
+      aim_state_gain_(n_, n_),
+      aim_input_gain_(m_, n_) {
   for (auto& slope : slopes_) slope.resize(n_, n_ + m_);
-  // The reference as the simulators give it to the controller and the cost: its integral by the
-  // PositionIntegral rule.
-  const double period = problem.controller_period();
-  PositionIntegral integral;
-  references_.reserve(static_cast<std::size_t>(problem.samples()));
-  for (int k = 0; k < problem.first_sample + problem.samples(); ++k) {
-    const Eigen::Vector3d position = problem.reference->position(k * period);
-    if (k >= problem.first_sample) references_.push_back({position, integral.value});
-    integral.accumulate(position, period);
+  if (problem.deviation_trims) {
+    deviation_.emplace(*problem.plant, problem.deviation_trims,
+                       sim::DeviationWeights{problem.state_weights, problem.input_weights, "the problem's"},
+                       problem.controller_period());
   }
   // The tracking vector is the state less the reference (affine in the state), so its columns at
   // a zero reference are exact: v(e_j) - v(0). The rows priced by the sampled integral instead are 0.
@@ -96,12 +120,27 @@ double ShootingInterval::run(int interval, const Eigen::VectorXd& node, const Ei
     problem_.plant->tracking_vector(x_, reference, v_);
     if (priced) v_.segment<3>(*priced) = next.tail<3>();
     if (visit) visit((problem_.first_sample + k) * period, next, v_, u);
+    error_ = v_;
+    input_error_ = u;
+    if (deviation_) {
+      aim(reference, sensitivities);
+      error_ -= aim_state_;
+      input_error_ -= aim_input_;
+    }
     // The same expression as the run metrics', so that a flight priced here costs what it cost.
-    cost += 0.5 * (v_.cwiseAbs2().dot(problem_.state_weights) + u.cwiseAbs2().dot(problem_.input_weights)) * period;
+    cost += 0.5 * (error_.cwiseAbs2().dot(problem_.state_weights) +
+                   input_error_.cwiseAbs2().dot(problem_.input_weights)) *
+            period;
     if (sensitivities) {
-      const Eigen::RowVectorXd weighted = period * v_.cwiseProduct(problem_.state_weights).transpose();
-      cost_gradient_.noalias() += (weighted * tracking_gain_) * sensitivity_;
-      cost_gradient_.tail(m_) += period * u.cwiseProduct(problem_.input_weights).transpose();
+      const Eigen::RowVectorXd weighted = period * error_.cwiseProduct(problem_.state_weights).transpose();
+      const Eigen::RowVectorXd input_weighted = period * input_error_.cwiseProduct(problem_.input_weights).transpose();
+      if (deviation_) {
+        cost_gradient_.noalias() +=
+            (weighted * (tracking_gain_ - aim_state_gain_) - input_weighted * aim_input_gain_) * sensitivity_;
+      } else {
+        cost_gradient_.noalias() += (weighted * tracking_gain_) * sensitivity_;
+      }
+      cost_gradient_.tail(m_) += input_weighted;
       if (priced) {
         cost_gradient_.noalias() += weighted.segment<3>(*priced) * integral_sensitivity_;
         cost_per_integral_ += weighted.segment<3>(*priced);
@@ -122,6 +161,26 @@ double ShootingInterval::run(int interval, const Eigen::VectorXd& node, const Ei
     next.head(n_) = x_;
   }
   return cost;
+}
+
+void ShootingInterval::aim(const Reference& reference, bool gradient) {
+  deviation_->target(x_, reference, aim_state_, aim_input_);
+  if (!gradient) return;
+  // Central differences with the step that balances their truncation and rounding errors.
+  const double step = std::cbrt(std::numeric_limits<double>::epsilon());
+  probe_ = x_;
+  for (int j = 0; j < n_; ++j) {
+    const double h = step * std::max(1.0, std::abs(x_[j]));
+    probe_[j] = x_[j] + h;
+    deviation_->target(probe_, reference, state_plus_, input_plus_);
+    aim_state_gain_.col(j) = state_plus_;
+    aim_input_gain_.col(j) = input_plus_;
+    probe_[j] = x_[j] - h;
+    deviation_->target(probe_, reference, state_plus_, input_plus_);
+    aim_state_gain_.col(j) = (aim_state_gain_.col(j) - state_plus_) / (2.0 * h);
+    aim_input_gain_.col(j) = (aim_input_gain_.col(j) - input_plus_) / (2.0 * h);
+    probe_[j] = x_[j];
+  }
 }
 
 const Eigen::VectorXd& ShootingInterval::stage(int i) {

@@ -51,16 +51,14 @@ ControllerSpec theta_d_spec(const YAML::Node& base, const std::string& label, in
   return {label, "theta-d", block, {}, {}};
 }
 
-DrawFlights::DrawFlights(const std::string& scenario, RunControls controls, YAML::Node theta_d, int terms, int threads)
-    : theta_d_(std::move(theta_d)), terms_(terms) {
+DrawFlights::DrawFlights(const std::string& scenario, RunControls controls, Parameterization parameters, int threads)
+    : parameters_(std::move(parameters)) {
   controls.summary_only = true;
   for (int w = 0; w < std::max(1, threads); ++w) flights_.push_back(std::make_unique<Flight>(scenario, controls));
-  flight().prepare(theta_d_spec(theta_d_, "theta-d", terms_, {}, {}));  // a block that does not design fails here
+  flight().prepare(parameters_.default_spec(parameters_.controller));  // a block that does not design fails here
 }
 
-std::vector<sim::RunSummary> DrawFlights::fly(const Eigen::VectorXd& k, const Eigen::VectorXd& l,
-                                              const std::vector<std::uint64_t>& seeds) {
-  const ControllerSpec spec = theta_d_spec(theta_d_, "theta-d", terms_, k, l);
+std::vector<sim::RunSummary> DrawFlights::fly(const ControllerSpec& spec, const std::vector<std::uint64_t>& seeds) {
   std::vector<sim::RunSummary> summaries(seeds.size());
   const int workers = static_cast<int>(std::min(flights_.size(), std::max<std::size_t>(1, seeds.size())));
   for_each_chunk(seeds.size(), 1, workers, [&](int worker, std::size_t draw, std::size_t, std::size_t) {
@@ -74,8 +72,15 @@ std::vector<sim::RunSummary> DrawFlights::fly(const Eigen::VectorXd& k, const Ei
 
 FitResult fit(DrawFlights& flights, const std::vector<std::uint64_t>& training, Metric metric, const FitOptions& options) {
   if (training.empty()) throw Error("tuning: the closed-loop objective needs at least one training draw");
-  return fit([&](const Eigen::VectorXd& k, const Eigen::VectorXd& l) { return mean_metric(flights.fly(k, l, training), metric); },
-             flights.terms() - 1, options);
+  const Parameterization& parameters = flights.parameters();
+  FitResult result = search_box([&](const Eigen::VectorXd& x) { return mean_metric(flights.fly(x, training), metric); },
+                                parameters.box, options);
+  if (parameters.kind == "series") {
+    const auto p = result.x.size() / 2;
+    result.k = result.x.head(p);
+    result.l = result.x.tail(p);
+  }
+  return result;
 }
 
 }  // namespace thetad::tuning

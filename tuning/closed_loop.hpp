@@ -1,9 +1,10 @@
 #pragma once
 
-// The closed-loop objective for k_i, l_i: the θ–D flown through the experiment library over a set
-// of seeded draws of a scenario (parameter uncertainty, wind and noise of each seed), summary only,
-// scored by the mean of its cost J or of its RMS tracking error. It measures what a user of the
-// controller wants from the tuning; the matches of ΣT_i to P (sigma_fit, entry_fit) only hope for it.
+// The closed-loop objective: a controller (θ–D with its k_i, l_i, or any controller with its
+// weights: parameterization.hpp) flown through the experiment library over a set of seeded draws
+// of a scenario (parameter uncertainty, wind and noise of each seed), summary only, scored by the
+// mean of its J, J_dev or RMS tracking error. It measures what a user of the controller wants from
+// the tuning; the matches of ΣT_i to P (sigma_fit, entry_fit) only hope for it.
 
 #include <cstdint>
 #include <memory>
@@ -17,6 +18,7 @@
 #include "experiment/controller_spec.hpp"
 #include "experiment/flight.hpp"
 #include "experiment/run_controls.hpp"
+#include "tuning/parameterization.hpp"
 #include "tuning/search.hpp"
 
 namespace thetad::tuning {
@@ -40,29 +42,32 @@ double mean_metric(const std::vector<sim::RunSummary>& summaries, Metric metric)
 ControllerSpec theta_d_spec(const YAML::Node& base, const std::string& label, int terms, const Eigen::VectorXd& k,
                             const Eigen::VectorXd& l);
 
-// θ–D flights of one scenario over seeded draws, for any k, l, on `threads` workers (one Flight
-// each). The draws are cut into fixed chunks of one, so the results are the same for any number of
-// workers.
+// Flights of one scenario over seeded draws, for any controller spec, on `threads` workers (one
+// Flight each). The draws are cut into fixed chunks of one, so the results are the same for any
+// number of workers.
 class DrawFlights {
  public:
   // `controls` as for Flight; the runs are summary-only whatever controls.summary_only says.
-  // Throws thetad::Error for a bad scenario or controls, or a θ–D block that does not design.
-  DrawFlights(const std::string& scenario, RunControls controls, YAML::Node theta_d, int terms, int threads);
+  // Throws thetad::Error for a bad scenario or controls, or when `parameters`' default controller
+  // does not design.
+  DrawFlights(const std::string& scenario, RunControls controls, Parameterization parameters, int threads);
 
   const Flight& flight() const { return *flights_.front(); }
-  int terms() const { return terms_; }
+  const Parameterization& parameters() const { return parameters_; }
 
-  // The summaries of the θ–D with k, l (empty: the block's own) flown on each of `seeds`, in order.
-  std::vector<sim::RunSummary> fly(const Eigen::VectorXd& k, const Eigen::VectorXd& l,
-                                   const std::vector<std::uint64_t>& seeds);
+  // The summaries of `spec` flown on each of `seeds`, in order.
+  std::vector<sim::RunSummary> fly(const ControllerSpec& spec, const std::vector<std::uint64_t>& seeds);
+  // The same for the controller at x of the parameterization.
+  std::vector<sim::RunSummary> fly(const Eigen::VectorXd& x, const std::vector<std::uint64_t>& seeds) {
+    return fly(parameters_.spec(x, parameters_.controller), seeds);
+  }
 
  private:
   std::vector<std::unique_ptr<Flight>> flights_;  // one per worker: set_seed changes a Flight
-  YAML::Node theta_d_;
-  int terms_;
+  Parameterization parameters_;
 };
 
-// Minimises mean_metric over the `training` draws with `fit` of search.hpp.
+// Minimises mean_metric over the `training` draws in the parameterization's box with search_box.
 FitResult fit(DrawFlights& flights, const std::vector<std::uint64_t>& training, Metric metric, const FitOptions& options);
 
 }  // namespace thetad::tuning

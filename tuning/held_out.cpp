@@ -26,7 +26,7 @@ PairedComparison compare(const HeldOutValidation& v, Metric metric, int resample
     differences.push_back(b - a);
   }
   if (differences.empty())
-    throw Error("tuning: no held-out draw of " + v.scenario + " was completed by both the default and the tuned theta-d");
+    throw Error("tuning: no held-out draw of " + v.scenario + " was completed by both the default and the tuned controller");
   return {metric, linear_quantile(defaults, 0.5), linear_quantile(tuned, 0.5),
           bootstrap_median(differences, v.bootstrap_seed, resamples)};
 }
@@ -51,7 +51,7 @@ DrawSeeds draw_seeds(std::uint64_t training_first, int training, std::uint64_t h
 int HeldOutValidation::diverged_default() const { return not_completed(default_runs); }
 int HeldOutValidation::diverged_tuned() const { return not_completed(tuned_runs); }
 
-HeldOutValidation validate_held_out(DrawFlights& flights, const Eigen::VectorXd& k, const Eigen::VectorXd& l,
+HeldOutValidation validate_held_out(DrawFlights& flights, const Eigen::VectorXd& tuned,
                                     const std::vector<std::uint64_t>& seeds, std::uint64_t bootstrap_seed, int resamples) {
   if (seeds.empty()) throw Error("tuning: the validation needs at least one held-out draw");
   HeldOutValidation v;
@@ -59,10 +59,14 @@ HeldOutValidation validate_held_out(DrawFlights& flights, const Eigen::VectorXd&
   v.seeds = seeds;
   v.resamples = resamples;
   v.bootstrap_seed = bootstrap_seed;
-  v.default_runs = flights.fly({}, {}, seeds);
-  v.tuned_runs = flights.fly(k, l, seeds);
+  v.default_runs = flights.fly(flights.parameters().default_spec(flights.parameters().controller), seeds);
+  v.tuned_runs = flights.fly(tuned, seeds);
   v.cost = compare(v, Metric::cost, resamples);
   v.rms_error = compare(v, Metric::rms_error, resamples);
+  const auto scored = [](const sim::RunSummary& s) { return s.cost_dev.has_value(); };
+  if (std::all_of(v.default_runs.begin(), v.default_runs.end(), scored) &&
+      std::all_of(v.tuned_runs.begin(), v.tuned_runs.end(), scored))
+    v.cost_dev = compare(v, Metric::cost_dev, resamples);
   return v;
 }
 

@@ -1,11 +1,12 @@
 #pragma once
 
 // Every tuning result, whatever its objective, is judged on draws it never saw: the default and
-// the tuned θ–D fly the same held-out draws (seeds disjoint from the training draws), and the
-// per-draw differences tuned − default of the cost J and of the RMS error are summarised by their
-// median with a bootstrap interval (paired_bootstrap).
+// the tuned controller fly the same held-out draws (seeds disjoint from the training draws), and
+// the per-draw differences tuned − default of the cost J, of J_dev (where the runs have it) and of
+// the RMS error are summarised by their median with a bootstrap interval (paired_bootstrap).
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -39,15 +40,17 @@ struct HeldOutValidation {
   int resamples = 0;
   std::uint64_t bootstrap_seed = 0;
   PairedComparison cost, rms_error;
+  std::optional<PairedComparison> cost_dev;  // where the runs have J_dev
 
   int pairs() const { return cost.difference.count; }
   int diverged_default() const;
   int diverged_tuned() const;
 };
 
-// Flies the default (k, l of the settings block) and the tuned θ–D on every held-out seed and
-// compares them. Throws thetad::Error when no seed is given or no draw was completed by both.
-HeldOutValidation validate_held_out(DrawFlights& flights, const Eigen::VectorXd& k, const Eigen::VectorXd& l,
+// Flies the default (the controller as given) and the tuned one (at `tuned`, a point of the
+// parameterization's box) on every held-out seed and compares them. Throws thetad::Error when no
+// seed is given or no draw was completed by both.
+HeldOutValidation validate_held_out(DrawFlights& flights, const Eigen::VectorXd& tuned,
                                     const std::vector<std::uint64_t>& seeds, std::uint64_t bootstrap_seed,
                                     int resamples = 2000);
 

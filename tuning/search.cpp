@@ -55,21 +55,19 @@ Eigen::VectorXd start_or_ones(const Eigen::VectorXd& start, int parameters) {
   return start.size() == 0 ? Eigen::VectorXd::Ones(parameters) : start;
 }
 
-// The objective NLopt sees: x = (k_1 … k_{N−1}, l_1 … l_{N−1}); keeps the best point itself, so
-// that a search NLopt ends with an exception (round-off) still returns what it found.
+// The objective NLopt sees; keeps the best point itself, so that a search NLopt ends with an
+// exception (round-off) still returns what it found.
 struct Tracked {
-  Tracked(const ParameterObjective& f, const FitOptions& o) : objective(f), options(o) {}
+  Tracked(const PointObjective& f, const FitOptions& o) : objective(f), options(o) {}
 
-  const ParameterObjective& objective;
+  const PointObjective& objective;
   const FitOptions& options;
   int evaluations = 0;
   double best = std::numeric_limits<double>::infinity();
   std::vector<double> best_x;
 
   double operator()(const std::vector<double>& x) {
-    const auto p = static_cast<Eigen::Index>(x.size() / 2);
-    const double value = objective(Eigen::Map<const Eigen::VectorXd>(x.data(), p),
-                                   Eigen::Map<const Eigen::VectorXd>(x.data() + p, p));
+    const double value = objective(Eigen::Map<const Eigen::VectorXd>(x.data(), static_cast<Eigen::Index>(x.size())));
     ++evaluations;
     const double ranked = std::isfinite(value) ? value : std::numeric_limits<double>::infinity();
     if (ranked < best || best_x.empty()) {
@@ -120,8 +118,16 @@ const std::vector<std::string>& fit_algorithms() {
   return names;
 }
 
-void check_fit_options(const FitOptions& o, int parameters) {
+void check_search_options(const FitOptions& o) {
   find_algorithm(o.algorithm);
+  if (o.max_local_evaluations < 1 || o.max_global_evaluations < 1)
+    throw Error("tuning: the evaluation limits must be >= 1");
+  if (!(o.max_seconds >= 0.0) || !std::isfinite(o.max_seconds))
+    throw Error("tuning: the time budget must be a finite number of seconds >= 0 (0: none)");
+}
+
+void check_fit_options(const FitOptions& o, int parameters) {
+  check_search_options(o);
   if (parameters < 1) throw Error("tuning: nothing to tune: the theta-d series needs terms >= 2 to have a k_i, l_i");
   const auto check_box = [](const char* name, double lower, double upper) {
     if (!std::isfinite(lower) || !std::isfinite(upper))
@@ -142,46 +148,58 @@ void check_fit_options(const FitOptions& o, int parameters) {
   };
   check_start("k", o.k_start, o.k_lower, o.k_upper);
   check_start("l", o.l_start, o.l_lower, o.l_upper);
-  if (o.max_local_evaluations < 1 || o.max_global_evaluations < 1)
-    throw Error("tuning: the evaluation limits must be >= 1");
-  if (!(o.max_seconds >= 0.0) || !std::isfinite(o.max_seconds))
-    throw Error("tuning: the time budget must be a finite number of seconds >= 0 (0: none)");
 }
 
-FitResult fit(const ParameterObjective& objective, int p, const FitOptions& options) {
-  check_fit_options(options, p);
+FitResult search_box(const PointObjective& objective, const SearchBox& box, const FitOptions& options) {
+  check_search_options(options);
+  const Eigen::Index size = box.start.size();
+  if (size < 1 || box.lower.size() != size || box.upper.size() != size)
+    throw Error("tuning: the search box has " + std::to_string(box.lower.size()) + " lower bounds, " +
+                std::to_string(box.upper.size()) + " upper and " + std::to_string(size) + " start values");
+  if (!box.lower.allFinite() || !box.upper.allFinite() || (box.lower.array() > box.upper.array()).any())
+    throw Error("tuning: the search box's bounds must be finite and ordered");
+  if (!box.start.allFinite() || (box.start.array() < box.lower.array()).any() ||
+      (box.start.array() > box.upper.array()).any())
+    throw Error("tuning: the search's start lies outside its box");
   const Algorithm& algorithm = find_algorithm(options.algorithm);
   const auto start = Clock::now();
   const auto deadline = start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(options.max_seconds));
+  const auto values = [](const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); };
+  const std::vector<double> lower = values(box.lower), upper = values(box.upper);
 
-  std::vector<double> x(static_cast<std::size_t>(2 * p)), lower(x.size()), upper(x.size());
-  const Eigen::VectorXd k0 = start_or_ones(options.k_start, p), l0 = start_or_ones(options.l_start, p);
-  for (int i = 0; i < p; ++i) {
-    const auto ki = static_cast<std::size_t>(i), li = static_cast<std::size_t>(p + i);
-    x[ki] = k0[i];
-    x[li] = l0[i];
-    lower[ki] = options.k_lower;
-    upper[ki] = options.k_upper;
-    lower[li] = options.l_lower;
-    upper[li] = options.l_upper;
-  }
   Tracked tracked(objective, options);
   FitResult result;
-  result.start_residual = tracked(x);
+  result.start_residual = tracked(values(box.start));
   if (algorithm.global) {
     nlopt::srand(options.seed);
-    run_stage(tracked, algorithm.id, lower, upper, x, options.max_global_evaluations, options, deadline);
+    run_stage(tracked, algorithm.id, lower, upper, values(box.start), options.max_global_evaluations, options, deadline);
   }
   // Local polish (or the whole search): from the best point so far. The start point counts
   // against the budget: max_local_evaluations bounds the evaluations of a local search in all.
   result.stop_reason = run_stage(tracked, algorithm.global ? nlopt::LN_BOBYQA : algorithm.id, lower, upper,
                                  tracked.best_x, std::max(1, options.max_local_evaluations - (algorithm.global ? 0 : 1)),
                                  options, deadline);
-  result.k = Eigen::Map<const Eigen::VectorXd>(tracked.best_x.data(), p);
-  result.l = Eigen::Map<const Eigen::VectorXd>(tracked.best_x.data() + p, p);
+  result.x = Eigen::Map<const Eigen::VectorXd>(tracked.best_x.data(), size);
   result.residual = tracked.best;
   result.evaluations = tracked.evaluations;
   result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  return result;
+}
+
+SearchBox series_box(const FitOptions& options, int p) {
+  check_fit_options(options, p);
+  SearchBox box{Eigen::VectorXd(2 * p), Eigen::VectorXd(2 * p), Eigen::VectorXd(2 * p)};
+  box.lower << Eigen::VectorXd::Constant(p, options.k_lower), Eigen::VectorXd::Constant(p, options.l_lower);
+  box.upper << Eigen::VectorXd::Constant(p, options.k_upper), Eigen::VectorXd::Constant(p, options.l_upper);
+  box.start << start_or_ones(options.k_start, p), start_or_ones(options.l_start, p);
+  return box;
+}
+
+FitResult fit(const ParameterObjective& objective, int p, const FitOptions& options) {
+  const SearchBox box = series_box(options, p);
+  FitResult result = search_box([&](const Eigen::VectorXd& x) { return objective(x.head(p), x.tail(p)); }, box, options);
+  result.k = result.x.head(p);
+  result.l = result.x.tail(p);
   return result;
 }
 

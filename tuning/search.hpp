@@ -1,7 +1,8 @@
 #pragma once
 
-// The NLopt search over θ–D's k_i, l_i shared by every tuning objective: x = (k_1 … k_{N−1},
-// l_1 … l_{N−1}) in a box, derivative-free, with an evaluation and a time budget.
+// The NLopt search shared by every tuning objective: a point x in a box, derivative-free, with an
+// evaluation and a time budget. For θ–D's series x = (k_1 … k_{N−1}, l_1 … l_{N−1}); for a
+// controller's weights the log10 factors of parameterization.hpp.
 
 #include <cstdint>
 #include <functional>
@@ -14,6 +15,13 @@ namespace thetad::tuning {
 
 // The value a tuning objective gives to (k, l); smaller is better.
 using ParameterObjective = std::function<double(const Eigen::VectorXd& k, const Eigen::VectorXd& l)>;
+// The value a tuning objective gives to a point of its box; smaller is better.
+using PointObjective = std::function<double(const Eigen::VectorXd& x)>;
+
+// A box of parameters and the point a search starts from.
+struct SearchBox {
+  Eigen::VectorXd lower, upper, start;
+};
 
 struct FitOptions {
   // "LN_BOBYQA" (default), "LN_COBYLA", "LN_SBPLX", "LN_NELDERMEAD": local from the start point;
@@ -34,12 +42,16 @@ struct FitOptions {
 
 // The algorithms FitOptions::algorithm accepts.
 const std::vector<std::string>& fit_algorithms();
-// Throws thetad::Error on an unknown algorithm, reversed or non-finite bounds, l_lower < 0, a start
-// point of the wrong size or outside the box, non-positive evaluation limits or a negative time budget.
+// Throws thetad::Error on an unknown algorithm, non-positive evaluation limits or a negative time budget.
+void check_search_options(const FitOptions& options);
+// check_search_options and, for the series: reversed or non-finite bounds of k or l, l_lower < 0, a
+// start point of the wrong size or outside the box.
 void check_fit_options(const FitOptions& options, int parameters);
 
 struct FitResult {
-  Eigen::VectorXd k, l;
+  Eigen::VectorXd x;     // the best point of the box
+  Eigen::VectorXd k, l;  // for the series: x split
+
   double start_residual = 0.0;  // the objective at the start point
   double residual = 0.0;        // at (k, l)
   int evaluations = 0;
@@ -47,8 +59,17 @@ struct FitResult {
   std::string stop_reason;      // NLopt's, of the last stage
 };
 
-// Minimises `objective` over `parameters` pairs (k_i, l_i). A non-finite value (a diverged flight)
-// counts as the largest double: NLopt then steers away from that point.
+// Minimises `objective` over `box` with the algorithm, budgets, seed and progress of `options` (its
+// k, l fields aside). A non-finite value (a diverged flight) counts as the largest double: NLopt
+// then steers away from that point. Throws thetad::Error for a box whose sizes differ, that is not
+// finite or ordered, or whose start lies outside it.
+FitResult search_box(const PointObjective& objective, const SearchBox& box, const FitOptions& options);
+
+// The box of `parameters` pairs (k_i, l_i), k first, from the bounds and start of `options`
+// (checked by check_fit_options).
+SearchBox series_box(const FitOptions& options, int parameters);
+
+// search_box over `parameters` pairs (k_i, l_i) in series_box.
 FitResult fit(const ParameterObjective& objective, int parameters, const FitOptions& options);
 
 }  // namespace thetad::tuning

@@ -26,15 +26,18 @@ Json to_json(const PairedComparison& c) {
           {"difference_interval", {number(c.difference.low), number(c.difference.high)}}};
 }
 
+Json to_json(const sim::RunSummary& run) {
+  Json j = {{"status", status_text(run)}, {"cost", run.cost}};
+  if (run.cost_dev) j["cost_dev"] = *run.cost_dev;
+  j["rms_error_m"] = run.rms_tracking_error.norm();
+  return j;
+}
+
 Json to_json(const HeldOutValidation& v, const std::string& tuning_scenario) {
   Json runs = Json::array();
   for (std::size_t i = 0; i < v.seeds.size(); ++i)
-    runs.push_back({{"seed", v.seeds[i]},
-                    {"default", {{"status", status_text(v.default_runs[i])}, {"cost", v.default_runs[i].cost},
-                                 {"rms_error_m", v.default_runs[i].rms_tracking_error.norm()}}},
-                    {"tuned", {{"status", status_text(v.tuned_runs[i])}, {"cost", v.tuned_runs[i].cost},
-                               {"rms_error_m", v.tuned_runs[i].rms_tracking_error.norm()}}}});
-  return {{"scenario", v.scenario},
+    runs.push_back({{"seed", v.seeds[i]}, {"default", to_json(v.default_runs[i])}, {"tuned", to_json(v.tuned_runs[i])}});
+  Json j = {{"scenario", v.scenario},
           {"role", v.scenario == tuning_scenario ? "tuning scenario" : "held-out scenario"},
           {"draws", v.seeds.size()},
           {"pairs", v.pairs()},
@@ -42,8 +45,10 @@ Json to_json(const HeldOutValidation& v, const std::string& tuning_scenario) {
           {"diverged_tuned", v.diverged_tuned()},
           {"bootstrap", {{"method", "percentile"}, {"confidence", 0.95}, {"resamples", v.resamples}, {"seed", v.bootstrap_seed}}},
           {"cost", to_json(v.cost)},
-          {"rms_error", to_json(v.rms_error)},
-          {"runs", runs}};
+          {"rms_error", to_json(v.rms_error)}};
+  if (v.cost_dev) j["cost_dev"] = to_json(*v.cost_dev);
+  j["runs"] = runs;
+  return j;
 }
 
 Json to_json(const ObjectiveSettings& o) {
@@ -94,12 +99,17 @@ Json to_json(const TuningReport& r) {
   j["seed"] = r.seed;
   j["objective"] = to_json(r.objective);
   if (r.objective.objective != Objective::closed_loop) j["record"] = {{"samples", r.samples}, {"reused", r.record_reused}};
+  j["controller"] = r.controller;
+  j["parameters"] = {{"kind", r.parameters}, {"names", r.parameter_names}, {"lower", values(r.box.lower)},
+                     {"upper", values(r.box.upper)}, {"start", values(r.box.start)}, {"tuned", values(r.fit.x)}};
   j["terms"] = r.terms;
   j["algorithm"] = r.options.algorithm;
-  j["bounds"] = {{"k", {r.options.k_lower, r.options.k_upper}}, {"l", {r.options.l_lower, r.options.l_upper}}};
   j["budget"] = {{"evaluations", r.options.max_local_evaluations}, {"seconds", r.options.max_seconds}};
-  j["k"] = values(r.fit.k);
-  j["l"] = values(r.fit.l);
+  if (r.parameters == "series") {
+    j["bounds"] = {{"k", {r.options.k_lower, r.options.k_upper}}, {"l", {r.options.l_lower, r.options.l_upper}}};
+    j["k"] = values(r.fit.k);
+    j["l"] = values(r.fit.l);
+  }
   j["residual_default"] = r.fit.start_residual;
   j["residual_tuned"] = r.fit.residual;
   j[r.figure + "_default"] = r.figure_default;
@@ -117,7 +127,7 @@ Json to_json(const TuningReport& r) {
 
 std::string tuned_settings_file(const TuningReport& report, const YAML::Node& settings) {
   YAML::Node file(YAML::NodeType::Map);
-  file["theta-d"] = settings;
+  file[report.controller] = settings;
   YAML::Emitter emitter;
   emitter.SetDoublePrecision(17);
   emitter << file;

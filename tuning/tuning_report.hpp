@@ -13,6 +13,7 @@
 
 #include "experiment/provenance.hpp"
 #include "tuning/closed_loop.hpp"
+#include "tuning/parameterization.hpp"
 #include "tuning/held_out.hpp"
 #include "tuning/record.hpp"
 #include "tuning/search.hpp"
@@ -41,6 +42,10 @@ struct ObjectiveSettings {
 
 struct TuningReport {
   std::string scenario;
+  std::string controller = "theta-d";
+  std::string parameters = "series";        // Parameterization::kind
+  std::vector<std::string> parameter_names;  // Parameterization::names
+  SearchBox box;
   std::uint64_t seed = 0;
   ObjectiveSettings objective;
   Eigen::Index samples = 0;    // of the record (sigma, entries)
@@ -62,8 +67,8 @@ struct TuningReport {
 
 nlohmann::ordered_json to_json(const TuningReport& report);
 
-// The settings file of the tuned θ–D: `theta-d:` with every field as the tuned controller uses it
-// (`settings`, resolved), so that the spec `tuned=theta-d:FILE` flies exactly what was tuned.
+// The settings file of the tuned controller: `CONTROLLER:` with every field as the tuned controller
+// uses it (`settings`, resolved), so that the spec `tuned=CONTROLLER:FILE` flies exactly what was tuned.
 std::string tuned_settings_file(const TuningReport& report, const YAML::Node& settings);
 
 // t_s, σ_max of the SDRE's P, and of ΣT_i with the default and the tuned k_i, l_i, per sample.

@@ -8,16 +8,27 @@
 #include "experiment/comparison.hpp"
 #include "experiment/controller_spec.hpp"
 #include "experiment/run_files.hpp"
-#include "optimal/optimality_gap.hpp"
+#include "optimal/optimality_report.hpp"
 
 namespace thetad::app {
 
 CLI::App* add_optimal_command(CLI::App& app, OptimalArguments& arguments) {
   auto* optimal = app.add_subcommand(
-      "optimal", "Each controller's cost J over a horizon and its gap to the optimum of the same problem (Ipopt, "
-                 "multiple shooting), flown ideal; write the optimal trajectory beside the flights. Exit code 0: "
+      "optimal", "Each controller's cost (J_dev or J) over a horizon and its gap to the optimum of the same problem "
+                 "(Ipopt, multiple shooting), flown ideal; write the optimal trajectory beside the flights. Exit code 0: "
                  "Ipopt converged, 3: it did not");
   optimal->add_option("--scenario", arguments.scenario, "Scenario file or the name of a shipped one")->required();
+  optimal
+      ->add_option("--cost", arguments.cost,
+                   "The cost minimized and compared: j-dev (the comparison's score, docs/model.md §7.2) or j (Eq. 32)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"j-dev", "j"}));
+  optimal
+      ->add_option_function<std::string>(
+          "--actuator-limits", [&arguments](const std::string& text) { arguments.actuator_limits = text == "on"; },
+          "on: the flights have the servo limits (docs/model.md §12) and the optimum their magnitude bounds, solved "
+          "bounded and then unbounded; off (default): neither")
+      ->check(CLI::IsMember({"on", "off"}));
   optimal->add_option("--start", arguments.start,
                       "Seconds into the scenario where the segment starts, from each controller's state there (a whole "
                       "number of controller periods)")
@@ -48,15 +59,61 @@ CLI::App* add_optimal_command(CLI::App& app, OptimalArguments& arguments) {
   return optimal;
 }
 
+namespace {
+
+void print_gaps(const Flight& flight, const OptimalityGap& gap, const OptimalityOptions& options) {
+  const OptimalControlProblem& first = gap.optima.front().problem;
+  const std::string cost = cost_name(gap.cost), best = cost + "*";
+  std::printf("%s, %g s from t = %g s (ideal%s; %s of every controller sample, docs/optimality.md)\n",
+              flight.scenario().name.c_str(), first.horizon(), first.start_time(),
+              first.bounded() ? ", actuator limits; the optimum bounded by their magnitudes" : "", cost.c_str());
+  for (const SegmentOptimum& optimum : gap.optima) {
+    for (const SolvedOptimum* solved : {&optimum.optimum, optimum.unbounded ? &*optimum.unbounded : nullptr}) {
+      if (solved == nullptr) continue;
+      std::printf("%s: Ipopt %s after %d iterations from %s; input held %g s (%d intervals); largest defect %.2g\n",
+                  solved->run.spec.label.c_str(), solved->solution.outcome.status.c_str(), solved->solution.iterations,
+                  solved->run.settings["warm_start"].as<std::string>().c_str(), options.control_interval,
+                  optimum.problem.intervals, solved->solution.constraint_violation);
+    }
+  }
+  const bool bounded = first.bounded();
+  std::printf("%-16s %-22s %16s %16s %12s", "label", "status", cost.c_str(), best.c_str(), "gap (%)");
+  if (bounded) std::printf(" %16s %14s", (best + " unbounded").c_str(), "gap unb. (%)");
+  std::printf("\n");
+  for (std::size_t i = 0; i < gap.flights.size(); ++i) {
+    const SegmentOptimum* optimum = gap.optimum_for(i);
+    char value[32] = "-", optimal[32] = "-", percent[32] = "-", unbounded[32] = "-", unbounded_percent[32] = "-";
+    if (optimum != nullptr) {
+      std::snprintf(value, sizeof value, "%.8g", gap.costs[i]);
+      std::snprintf(optimal, sizeof optimal, "%.8g", optimum->cost(gap.cost));
+      std::snprintf(percent, sizeof percent, "%.4f", gap.gap_percent(i));
+      std::snprintf(unbounded, sizeof unbounded, "%.8g", optimum->unbounded_cost(gap.cost));
+      std::snprintf(unbounded_percent, sizeof unbounded_percent, "%.4f", gap.unbounded_gap_percent(i));
+    }
+    std::printf("%-16s %-22s %16s %16s %12s", gap.flights[i].spec.label.c_str(),
+                status_text(gap.flights[i].summary).c_str(), value, optimal, percent);
+    if (bounded) std::printf(" %16s %14s", unbounded, unbounded_percent);
+    std::printf("\n");
+  }
+  if (bounded && !unbounded_at_most_bounded(gap)) {
+    std::printf("warning: an unbounded optimum costs more than its bounded one: a solve stopped short of its minimum "
+                "(raise --max-iterations or tighten --tolerance)\n");
+  }
+}
+
+}  // namespace
+
 int run_optimal(const OptimalArguments& arguments) {
   RunControls controls;
   controls.duration = arguments.start + arguments.horizon;
-  controls.ideal = true;  // the optimum is that of the nominal plant with ideal servos
+  controls.ideal = true;  // the optimum is that of the nominal plant with ideal sensors
+  controls.actuator_limits = arguments.actuator_limits;
   controls.log_every = 1;
   controls.summary_only = false;
   if (arguments.no_timing) controls.timing = false;
   const Flight flight(arguments.scenario, controls);
   OptimalityOptions options;
+  options.cost = arguments.cost == "j" ? OptimalCost::paper : OptimalCost::deviation;
   options.control_interval = arguments.control_interval;
   options.start = arguments.start;
   options.warm_start = arguments.warm_start;
@@ -79,73 +136,16 @@ int run_optimal(const OptimalArguments& arguments) {
   }
 
   Progress progress(Progress::mode_for_stderr(arguments.quiet));
-  OptimalityGap gap = optimality_gap(flight, controllers, options, &progress);
-
-  std::vector<RunResult> runs = gap.flights;
-  for (const auto& optimum : gap.optima) runs.push_back(optimum.run);
+  const OptimalityGap gap = optimality_gap(flight, controllers, options, &progress);
+  const std::vector<RunResult> runs = optimality_runs(gap);
   std::vector<RunFiles> files;
   for (const auto& run : runs) files.push_back(write_run_files(run, arguments.out));
-
-  const double start = gap.optima.front().problem.start_time(), horizon = gap.optima.front().problem.horizon();
-  std::printf("%s, %g s from t = %g s (ideal; J of every controller sample, docs/optimality.md)\n",
-              flight.scenario().name.c_str(), horizon, start);
-  bool converged = true;
-  nlohmann::ordered_json optima = nlohmann::ordered_json::array();
-  for (std::size_t i = 0; i < gap.optima.size(); ++i) {
-    const SegmentOptimum& optimum = gap.optima[i];
-    const OptimalControlSolution& solution = optimum.solution;
-    converged = converged && solution.outcome.converged;
-    std::printf("%s: Ipopt %s after %d iterations from %s's flight; input held %g s (%d intervals); largest defect %.2g\n",
-                optimum.run.spec.label.c_str(), solution.outcome.status.c_str(), solution.iterations, optimum.from.c_str(),
-                arguments.control_interval, optimum.problem.intervals, solution.constraint_violation);
-    optima.push_back({{"label", optimum.run.spec.label},
-                      {"from", optimum.from},
-                      {"ipopt_status", solution.outcome.status},
-                      {"ipopt_converged", solution.outcome.converged},
-                      {"ipopt_iterations", solution.iterations},
-                      {"max_defect", solution.constraint_violation},
-                      {"optimal_cost", optimum.run.summary.cost},
-                      {"result", files[gap.flights.size() + i].json.filename().string()}});
-  }
-  std::printf("%-16s %-22s %16s %16s %12s\n", "label", "status", "J", "J*", "gap (%)");
-  nlohmann::ordered_json gaps = nlohmann::ordered_json::array();
-  for (std::size_t i = 0; i < gap.flights.size(); ++i) {
-    const RunResult& flight_run = gap.flights[i];
-    const SegmentOptimum* optimum = gap.optimum_for(i);
-    char cost[32] = "-", best[32] = "-", percent[32] = "-";
-    if (optimum != nullptr) {
-      std::snprintf(cost, sizeof cost, "%.8g", gap.costs[i]);
-      std::snprintf(best, sizeof best, "%.8g", optimum->run.summary.cost);
-      std::snprintf(percent, sizeof percent, "%.4f", gap.gap_percent(i));
-    }
-    std::printf("%-16s %-22s %16s %16s %12s\n", flight_run.spec.label.c_str(), status_text(flight_run.summary).c_str(),
-                cost, best, percent);
-    const auto number_or_null = [&](double value) {
-      return optimum != nullptr ? nlohmann::ordered_json(value) : nlohmann::ordered_json(nullptr);
-    };
-    gaps.push_back({{"label", flight_run.spec.label},
-                    {"controller", flight_run.spec.controller},
-                    {"status", status_text(flight_run.summary)},
-                    {"cost", number_or_null(gap.costs[i])},
-                    {"optimum", optimum != nullptr ? nlohmann::ordered_json(optimum->run.spec.label) : nullptr},
-                    {"optimal_cost", number_or_null(optimum != nullptr ? optimum->run.summary.cost : 0.0)},
-                    {"gap_percent", number_or_null(gap.gap_percent(i))}});
-  }
-
+  print_gaps(flight, gap, options);
   write_file_atomically(comparison_file, comparison_json(flight, runs, files).dump(2) + "\n");
-  nlohmann::ordered_json result = {{"format", "thetad-optimality-2"},
-                                   {"scenario", flight.scenario().name},
-                                   {"start_s", start},
-                                   {"horizon_s", horizon},
-                                   {"control_interval_s", arguments.control_interval},
-                                   {"intervals", gap.optima.front().problem.intervals},
-                                   {"optima", optima},
-                                   {"controllers", gaps},
-                                   {"provenance", to_json(gap.optima.front().run.provenance)}};
-  write_file_atomically(optimality_file, result.dump(2) + "\n");
+  write_file_atomically(optimality_file, optimality_json(flight, gap, options, files).dump(2) + "\n");
   std::printf("Wrote %s, %s and the result files of each controller and optimum in %s.\n", optimality_file.c_str(),
               comparison_file.c_str(), arguments.out.c_str());
-  return converged ? kExitCompleted : kExitDiverged;
+  return optimality_converged(gap) && unbounded_at_most_bounded(gap) ? kExitCompleted : kExitDiverged;
 }
 
 }  // namespace thetad::app

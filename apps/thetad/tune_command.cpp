@@ -77,6 +77,23 @@ tuning::FitOptions fit_options(const TuneArguments& a, const tuning::ObjectiveSe
   return options;
 }
 
+// What the search moves: θ–D's series or the controller's weights; only the closed loop can tune
+// weights, and only θ–D has a series.
+tuning::Parameterization parameterization(const TuneArguments& a, const tuning::TuningReport& report,
+                                          const YAML::Node& base, const Flight& flight) {
+  const std::string kind = a.parameters.value_or(a.controller == "theta-d" ? "series" : "weights");
+  if (kind == "series") {
+    if (a.controller != "theta-d")
+      throw Error("--parameters series: only theta-d has a series (k_i, l_i); tune " + a.controller +
+                  "'s weights with --parameters weights");
+    return tuning::series_parameters(base, a.terms, report.options);
+  }
+  if (report.objective.objective != tuning::Objective::closed_loop)
+    throw Error("--parameters weights: the weights are tuned by the closed loop only (--objective closed-loop)");
+  flight.prepare(parse_controller_spec(a.controller));  // an unknown controller fails here, by name
+  return tuning::weight_parameters(a.controller, base, flight.plant(), a.weight_bounds);
+}
+
 // The record of --record when that file exists (it must be of this scenario); nothing otherwise.
 std::optional<tuning::TuningRecord> reused_record(const TuneArguments& a, const Flight& flight) {
   if (a.record.empty() || !std::filesystem::exists(a.record)) return std::nullopt;
@@ -172,8 +189,9 @@ void print_comparison(const std::string& scenario, const tuning::PairedCompariso
 // Quiet and parseable: one key=value line per figure.
 void print_report(const tuning::TuningReport& r, const std::vector<std::filesystem::path>& written) {
   const tuning::FitResult& fit = r.fit;
-  std::printf("scenario=%s objective=%s terms=%d algorithm=%s", r.scenario.c_str(),
-              tuning::objective_name(r.objective.objective), r.terms, r.options.algorithm.c_str());
+  std::printf("scenario=%s controller=%s parameters=%s objective=%s terms=%d algorithm=%s", r.scenario.c_str(),
+              r.controller.c_str(), r.parameters.c_str(), tuning::objective_name(r.objective.objective), r.terms,
+              r.options.algorithm.c_str());
   switch (r.objective.objective) {
     case tuning::Objective::sigma:
       std::printf(" samples=%lld weighting=%s\n", static_cast<long long>(r.samples),
@@ -186,7 +204,12 @@ void print_report(const tuning::TuningReport& r, const std::vector<std::filesyst
       std::printf(" metric=%s training_draws=%zu\n", tuning::metric_name(r.objective.metric), r.objective.training_seeds.size());
       break;
   }
-  std::printf("k=%s\nl=%s\n", numbers(fit.k).c_str(), numbers(fit.l).c_str());
+  if (r.parameters == "series") {
+    std::printf("k=%s\nl=%s\n", numbers(fit.k).c_str(), numbers(fit.l).c_str());
+  } else {
+    for (std::size_t i = 0; i < r.parameter_names.size(); ++i)
+      std::printf("%s=%.10g\n", r.parameter_names[i].c_str(), fit.x[static_cast<Eigen::Index>(i)]);
+  }
   std::printf("residual_default=%.10g residual_tuned=%.10g %s_default=%.6g %s_tuned=%.6g\n", fit.start_residual,
               fit.residual, r.figure.c_str(), r.figure_default, r.figure.c_str(), r.figure_tuned);
   std::printf("evaluations=%d setup_seconds=%.3f fit_seconds=%.3f stop=\"%s\"\n", fit.evaluations, r.setup_seconds,
@@ -196,6 +219,7 @@ void print_report(const tuning::TuningReport& r, const std::vector<std::filesyst
                 v.scenario.c_str(), v.scenario == r.scenario ? "tuning-scenario" : "held-out-scenario", v.seeds.size(),
                 static_cast<unsigned long long>(v.seeds.front()), v.pairs(), v.diverged_default(), v.diverged_tuned());
     print_comparison(v.scenario, v.cost);
+    if (v.cost_dev) print_comparison(v.scenario, *v.cost_dev);
     print_comparison(v.scenario, v.rms_error);
   }
   std::string files;
@@ -208,12 +232,21 @@ void print_report(const tuning::TuningReport& r, const std::vector<std::filesyst
 CLI::App* add_tune_command(CLI::App& app, TuneArguments& a) {
   auto* tune = app.add_subcommand(
       "tune", "Fit theta-D's k_i, l_i by an objective (sigma: the paper's sigma_max match to an SDRE flight, "
-              "docs/model.md §8.1; entries: a per-entry match; closed-loop: mean cost or RMS error over seeded draws); "
-              "compare default and tuned on held-out draws");
+              "docs/model.md §8.1; entries: a per-entry match; closed-loop: mean cost, J_dev or RMS error over seeded "
+              "draws), or any controller's weights Q, R by the closed loop; compare default and tuned on held-out draws");
   add_flight_options(*tune, a.flight);
   tune->get_option("--out")->required();
   tune->add_option("--objective", a.objective, "sigma, entries or closed-loop")
       ->check(CLI::IsMember({"sigma", "entries", "closed-loop"}))
+      ->capture_default_str();
+  tune->add_option("--controller", a.controller, "The controller tuned (its block of --settings is the start)")
+      ->capture_default_str();
+  tune->add_option("--parameters", a.parameters,
+                   "series (theta-d's k_i, l_i) or weights (log10 factors on the controller's Q and R by group, "
+                   "closed-loop only; docs/tuning.md); default: series for theta-d, weights otherwise")
+      ->check(CLI::IsMember({"series", "weights"}));
+  tune->add_option("--weight-bounds", a.weight_bounds, "weights: each log10 factor lies in [-B, B]")
+      ->check(CLI::Range(1e-3, 10.0))
       ->capture_default_str();
   // The expansion's pieces grow fast with N (5, 11, 29 for N = 3, 4, 5; 516 for N = 8), and every
   // sample stores all of them: N = 5 already needs ~340 MB for scenario I's 8500 samples.
@@ -285,23 +318,28 @@ int run_tune(const TuneArguments& a) {
   if (closed_loop) report.objective.training_seeds = seeds.training;
 
   const YAML::Node settings = a.flight.settings.empty() ? YAML::Node() : load_settings_file(a.flight.settings);
-  const YAML::Node base = settings.IsMap() && settings["theta-d"] ? settings["theta-d"] : YAML::Node();
-  tuning::DrawFlights draws(a.flight.scenario, controls, base, a.terms, a.threads);
+  const YAML::Node base = settings.IsMap() && settings[a.controller] ? settings[a.controller] : YAML::Node();
+  const tuning::Parameterization parameters = parameterization(a, report, base, flight);
+  report.controller = parameters.controller;
+  report.parameters = parameters.kind;
+  report.parameter_names = parameters.names;
+  report.box = parameters.box;
+  tuning::DrawFlights draws(a.flight.scenario, controls, parameters, a.threads);
   std::optional<tuning::DrawFlights> holdout;
   const std::filesystem::path holdout_file =
       a.holdout.empty() ? default_holdout(find_scenario(a.flight.scenario)) : a.holdout;
-  if (!a.no_validation && !holdout_file.empty()) holdout.emplace(holdout_file.string(), controls, base, a.terms, a.threads);
+  if (!a.no_validation && !holdout_file.empty()) holdout.emplace(holdout_file.string(), controls, parameters, a.threads);
   const std::optional<tuning::TuningRecord> reused = closed_loop ? std::nullopt : reused_record(a, flight);
   prepare_output_folder(a.flight.out);
 
   Progress progress(Progress::mode_for_stderr(a.flight.quiet));
   report.fit = search(a, flight, settings, base, reused, draws, report, progress);
   progress.finish("done: " + std::to_string(report.fit.evaluations) + " evaluations, " + report.fit.stop_reason);
-  std::vector<std::filesystem::path> written{a.flight.out / "theta-d-tuned.yaml", a.flight.out / "tuning.json"};
+  std::vector<std::filesystem::path> written{a.flight.out / (report.controller + "-tuned.yaml"),
+                                             a.flight.out / "tuning.json"};
   if (report.objective.objective == tuning::Objective::sigma) written.push_back(a.flight.out / "sigma-curves.csv");
-  write_file_atomically(written[0], tuned_settings_file(report, flight.prepare(tuning::theta_d_spec(base, "theta-d", a.terms,
-                                                                                                    report.fit.k, report.fit.l))
-                                                                    .settings));
+  write_file_atomically(written[0],
+                        tuned_settings_file(report, flight.prepare(parameters.spec(report.fit.x, report.controller)).settings));
 
   std::vector<tuning::DrawFlights*> validation{&draws};
   if (holdout) validation.push_back(&*holdout);
@@ -309,7 +347,7 @@ int run_tune(const TuneArguments& a) {
     if (a.no_validation) break;
     progress.start("validation on " + flights->flight().scenario().name + ":", 2.0 * static_cast<double>(seeds.held_out.size()),
                    "flights");
-    report.validations.push_back(tuning::validate_held_out(*flights, report.fit.k, report.fit.l, seeds.held_out, seed));
+    report.validations.push_back(tuning::validate_held_out(*flights, report.fit.x, seeds.held_out, seed));
     progress.finish("done");
   }
   write_file_atomically(written[1], to_json(report).dump(2) + "\n");

@@ -13,6 +13,9 @@ namespace thetad::app {
 struct TuneArguments {
   FlightOptions flight;             // the SDRE and θ–D blocks of --settings start the fit; --out required
   std::string objective = "sigma";  // sigma | entries | closed-loop
+  std::string controller = "theta-d";    // the controller tuned (its settings block in --settings)
+  std::optional<std::string> parameters;  // series | weights; unset: series for theta-d, else weights
+  double weight_bounds = 2.0;             // weights: each log10 factor in [-bound, bound]
   int terms = 3;                    // N of the θ–D series
   std::optional<std::string> algorithm;  // unset: LN_BOBYQA; LN_COBYLA for closed-loop (see docs/tuning.md)
   std::optional<int> max_evaluations;  // unset: 1500 for sigma and entries, 40 for closed-loop
@@ -36,12 +39,12 @@ struct TuneArguments {
 };
 CLI::App* add_tune_command(CLI::App& app, TuneArguments& arguments);
 
-// thetad tune: fit k_i, l_i by the chosen objective (the paper's σ_max match on an SDRE record,
-// the per-entry match, or the closed loop over training draws), then validate default against
-// tuned on held-out draws of the tuning scenario and of a held-out scenario. Writes
-// <out>/theta-d-tuned.yaml (a --settings file for thetad run), <out>/tuning.json and, for the
-// sigma objective, <out>/sigma-curves.csv; key=value lines on stdout. Every input is checked
-// before anything is flown or written.
+// thetad tune: fit θ–D's k_i, l_i by the chosen objective (the paper's σ_max match on an SDRE
+// record, the per-entry match, or the closed loop over training draws), or any controller's
+// weights by the closed loop, then validate default against tuned on held-out draws of the tuning
+// scenario and of a held-out scenario. Writes <out>/CONTROLLER-tuned.yaml (a --settings file for
+// thetad run), <out>/tuning.json and, for the sigma objective, <out>/sigma-curves.csv; key=value
+// lines on stdout. Every input is checked before anything is flown or written.
 int run_tune(const TuneArguments& arguments);
 
 }  // namespace thetad::app

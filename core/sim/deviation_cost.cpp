@@ -31,15 +31,21 @@ DeviationCost::DeviationCost(const SdcPlant& plant, std::shared_ptr<const TrimSo
 
 void DeviationCost::add(const Eigen::Ref<const Eigen::VectorXd>& x, const Reference& reference,
                         const Eigen::Ref<const Eigen::VectorXd>& v, const Eigen::Ref<const Eigen::VectorXd>& u) {
+  target(x, reference, error_, input_error_);
+  error_ = v - error_;
+  input_error_ = u - input_error_;
+  sum_ += error_.cwiseAbs2().dot(weights_.state) + input_error_.cwiseAbs2().dot(weights_.input);
+}
+
+void DeviationCost::target(const Eigen::Ref<const Eigen::VectorXd>& x, const Reference& reference,
+                           Eigen::Ref<Eigen::VectorXd> tracking, Eigen::Ref<Eigen::VectorXd> input) {
   motion_.aim(x, reference);
   // V* = the tracking vector of x_r: the plant's tracking vector is the state less what the
   // reference commands (bias entry 1), so V − V* is x − x_r with the true integral errors.
   target_ = motion_.motion().state;
   target_[motion_.bias_state()] = 1.0;
-  motion_.plant().tracking_vector(target_, reference, error_);
-  error_ = v - error_;
-  input_error_ = u - motion_.motion().input;
-  sum_ += error_.cwiseAbs2().dot(weights_.state) + input_error_.cwiseAbs2().dot(weights_.input);
+  motion_.plant().tracking_vector(target_, reference, tracking);
+  input = motion_.motion().input;
 }
 
 }  // namespace thetad::sim

@@ -33,8 +33,14 @@ class DeviationCost {
   // the commanded input u. Allocates nothing.
   void add(const Eigen::Ref<const Eigen::VectorXd>& x, const Reference& reference,
            const Eigen::Ref<const Eigen::VectorXd>& v, const Eigen::Ref<const Eigen::VectorXd>& u);
+  // What add() subtracts at this sample: V*, the tracking vector of the commanded motion (it
+  // depends on x through the attitude the commanded velocity is resolved in), and u_r. Allocates
+  // nothing.
+  void target(const Eigen::Ref<const Eigen::VectorXd>& x, const Reference& reference,
+              Eigen::Ref<Eigen::VectorXd> tracking, Eigen::Ref<Eigen::VectorXd> input);
   double value() const { return 0.5 * sum_ * period_; }
   const DeviationWeights& weights() const { return weights_; }
+  const std::shared_ptr<const TrimSource>& trims() const { return motion_.trims(); }
 
  private:
   ErrorFormPlant motion_;

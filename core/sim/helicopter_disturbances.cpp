@@ -1,5 +1,6 @@
 #include "core/sim/helicopter_disturbances.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -128,6 +129,13 @@ const std::vector<LogColumn>& helicopter_log_schema() {
     return log_schema(plant, HelicopterDisturbances(SimulationSettings::ideal()));
   }();
   return schema;
+}
+
+Eigen::Index helicopter_log_column(const std::string& header) {
+  const auto& schema = helicopter_log_schema();
+  const auto found = std::find_if(schema.begin(), schema.end(), [&](const LogColumn& c) { return c.header() == header; });
+  if (found == schema.end()) throw Error("the helicopter's run log has no column " + header);
+  return static_cast<Eigen::Index>(found - schema.begin());
 }
 
 RunResult simulate(ControlLaw& law, const ReferenceTrajectory& reference, const Eigen::VectorXd& x0,

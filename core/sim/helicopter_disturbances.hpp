@@ -57,6 +57,9 @@ class HelicopterDisturbances final : public Disturbances {
 
 // The columns of every helicopter run's log, in order: what its CSV files are checked against.
 const std::vector<LogColumn>& helicopter_log_schema();
+// The index in helicopter_log_schema() of the column with this CSV header; throws thetad::Error
+// when there is none.
+Eigen::Index helicopter_log_column(const std::string& header);
 
 // Flies `law` on the helicopter (nominal parameters and model options, drawn and disturbed by
 // HelicopterDisturbances) from x0 (the 18-state, s = 1) for settings.duration.

@@ -29,15 +29,21 @@ class OptimalCommand : public ::testing::Test {
 TEST_F(OptimalCommand, PrintsEachGapAndWritesTheOptimumBesideTheFlights) {
   const Output output = thetad("optimal --scenario hover-to-hover --horizon 0.2 --controllers lqr,sdre --no-timing --out " + out());
   ASSERT_EQ(output.status, 0) << output.err;
-  EXPECT_THAT(output.out, HasSubstr("hover-to-hover, 0.2 s from t = 0 s"));
-  // The cheapest flight is the warm start.
+  EXPECT_THAT(output.out, HasSubstr("hover-to-hover, 0.2 s from t = 0 s (ideal; J_dev of every controller sample"));
   EXPECT_THAT(output.out, HasSubstr("optimal: Ipopt Solve_Succeeded"));
-  EXPECT_THAT(output.out, HasSubstr("from sdre's flight; input held 0.05 s (4 intervals)"));
+  EXPECT_THAT(output.out, HasSubstr("input held 0.05 s (4 intervals)"));
   const nlohmann::json result = nlohmann::json::parse(thetad::testing::read_text(dir_ / "out" / "optimality.json"));
-  EXPECT_EQ(result["format"], "thetad-optimality-2");
+  EXPECT_EQ(result["format"], "thetad-optimality-3");
+  EXPECT_EQ(result["cost"]["name"], "J_dev");
+  EXPECT_THAT(result["cost"]["weights"].get<std::string>(), HasSubstr("designed weights"));
+  EXPECT_EQ(result["input_bounds"], "none");
+  EXPECT_TRUE(result["converged"].get<bool>());
+  EXPECT_TRUE(result["unbounded_at_most_bounded"].is_null());
   ASSERT_EQ(result["optima"].size(), 1u);
-  EXPECT_TRUE(result["optima"][0]["ipopt_converged"].get<bool>());
-  const double optimal_cost = result["optima"][0]["optimal_cost"].get<double>();
+  EXPECT_FALSE(result["optima"][0].contains("unbounded"));
+  const nlohmann::json& solve = result["optima"][0]["optimum"];
+  EXPECT_TRUE(solve["ipopt_converged"].get<bool>());
+  const double optimal_cost = solve["cost_dev"].get<double>();
   ASSERT_EQ(result["controllers"].size(), 2u);
   for (const auto& controller : result["controllers"]) {
     EXPECT_GE(controller["gap_percent"].get<double>(), 0.0) << controller["label"];
@@ -45,13 +51,35 @@ TEST_F(OptimalCommand, PrintsEachGapAndWritesTheOptimumBesideTheFlights) {
     EXPECT_NEAR(controller["cost"].get<double>(), optimal_cost * (1.0 + controller["gap_percent"].get<double>() / 100.0),
                 1e-9 * controller["cost"].get<double>());
   }
-  // The optimum is a run of the comparison, as `thetad plot` reads one.
+  // The optimum is a run of the comparison, as `thetad plot` reads one, scored as the flights are.
   const nlohmann::json optimum = nlohmann::json::parse(thetad::testing::read_text(dir_ / "out" / "optimal.json"));
   EXPECT_EQ(optimum["label"], "optimal");
-  EXPECT_EQ(optimum["cost"]["J"].get<double>(), optimal_cost);
+  EXPECT_EQ(optimum["cost_dev"]["J_dev"].get<double>(), optimal_cost);
+  EXPECT_EQ(optimum["cost"]["J"].get<double>(), solve["cost"].get<double>());
   EXPECT_EQ(optimum["log"]["rows"], 200);
   const nlohmann::json comparison = nlohmann::json::parse(thetad::testing::read_text(dir_ / "out" / "comparison.json"));
   EXPECT_EQ(comparison["runs"].size(), 3u);
+}
+
+// With the actuator limits the optimum is solved bounded, then unbounded from it; on J too.
+TEST_F(OptimalCommand, WithLimitsSolvesBoundedThenUnbounded) {
+  const Output output = thetad("optimal --scenario hover-step --horizon 0.2 --controllers lqr --cost j "
+                               "--actuator-limits on --no-timing --out " + out());
+  ASSERT_EQ(output.status, 0) << output.err;
+  EXPECT_THAT(output.out, HasSubstr("(ideal, actuator limits; the optimum bounded by their magnitudes; J of every"));
+  EXPECT_THAT(output.out, HasSubstr("optimal-unbounded: Ipopt Solve_Succeeded"));
+  const nlohmann::json result = nlohmann::json::parse(thetad::testing::read_text(dir_ / "out" / "optimality.json"));
+  EXPECT_EQ(result["cost"]["name"], "J");
+  EXPECT_THAT(result["input_bounds"].get<std::string>(), HasSubstr("magnitude limits"));
+  EXPECT_TRUE(result["unbounded_at_most_bounded"].get<bool>());
+  const nlohmann::json& optimum = result["optima"][0];
+  EXPECT_EQ(optimum["unbounded"]["label"], "optimal-unbounded");
+  EXPECT_GE(optimum["bounded_minus_unbounded"].get<double>(), -1e-6 * optimum["optimum"]["cost"].get<double>());
+  const nlohmann::json& lqr = result["controllers"][0];
+  EXPECT_EQ(lqr["unbounded_optimal_cost"].get<double>(), optimum["unbounded"]["cost"].get<double>());
+  EXPECT_TRUE(fs::exists(dir_ / "out" / "optimal-unbounded.json"));
+  const nlohmann::json flown = nlohmann::json::parse(thetad::testing::read_text(dir_ / "out" / "lqr.json"));
+  EXPECT_TRUE(flown["settings"]["actuator_limits"]["enabled"].get<bool>());
 }
 
 TEST_F(OptimalCommand, FromMidFlightSolvesFromEachControllersState) {

@@ -113,6 +113,67 @@ TEST(OptimalControl, OnALinearPlantCostsWhatTheFiniteHorizonLqrSays) {
   EXPECT_EQ(solution.samples.row(0).segment(1, 3), problem.initial_state.transpose());
 }
 
+// J of the inputs alone (one row per interval), the nodes rolled forward from the initial state.
+double rolled_cost(const OptimalControlProblem& problem, const Eigen::MatrixXd& inputs) {
+  ShootingInterval interval(problem);
+  Eigen::VectorXd node = interval.initial_node(), next(node.size());
+  double cost = 0.0;
+  for (int k = 0; k < problem.intervals; ++k) {
+    cost += interval.propagate(k, node, inputs.row(k).transpose(), next);
+    node = next;
+  }
+  return cost;
+}
+
+// With input bounds that bind, the solution is a minimum of the box-constrained problem: its KKT
+// conditions hold on the condensed cost (gradient zero off the bounds, pointing out of the box on
+// them), and it costs more than the unbounded optimum.
+TEST(OptimalControl, OnALinearPlantWithBoundsMeetsTheBoxConstrainedOptimality) {
+  const LinearPlant plant = small_plant();
+  OptimalControlProblem problem = problem_for(plant);
+  OptimalControlSettings settings;
+  settings.ipopt.tolerance = 1e-10;
+  const OptimalControlSolution free = solve_optimal_control(problem, idle_start(problem), settings);
+  ASSERT_TRUE(free.outcome.converged);
+  const Eigen::VectorXd reach = free.shooting.inputs.cwiseAbs().colwise().maxCoeff().transpose();
+  problem.input_lower = -0.4 * reach;
+  problem.input_upper = 0.4 * reach;
+  const OptimalControlSolution bounded = solve_optimal_control(problem, idle_start(problem), settings);
+  ASSERT_TRUE(bounded.outcome.converged) << bounded.outcome.status;
+  EXPECT_GT(bounded.cost, free.cost * 1.01);
+  EXPECT_LE(bounded.constraint_violation, 1e-8);
+  const Eigen::MatrixXd& u = bounded.shooting.inputs;
+  // The condensed cost is quadratic in u: its central differences are exact but for rounding.
+  const auto cost_of = [&](const Eigen::VectorXd& flat) {
+    Eigen::VectorXd value(1);
+    value[0] = rolled_cost(problem, Eigen::Map<const Eigen::MatrixXd>(flat.data(), u.rows(), u.cols()));
+    return value;
+  };
+  const Eigen::VectorXd flat = Eigen::Map<const Eigen::VectorXd>(u.data(), u.size());
+  const Eigen::VectorXd gradient = testing::central_differences(cost_of, flat).transpose();
+  const Eigen::VectorXd scale =
+      testing::central_differences(cost_of, Eigen::VectorXd::Zero(u.size())).transpose().cwiseAbs();
+  const double tolerance = 1e-6 * scale.maxCoeff();
+  int at_bounds = 0;
+  for (Eigen::Index k = 0; k < u.rows(); ++k) {
+    for (Eigen::Index i = 0; i < u.cols(); ++i) {
+      const double g = gradient[i * u.rows() + k], margin = 1e-6 * reach[i];
+      ASSERT_GE(u(k, i), problem.input_lower[i] - 1e-12);
+      ASSERT_LE(u(k, i), problem.input_upper[i] + 1e-12);
+      if (u(k, i) < problem.input_lower[i] + margin) {
+        EXPECT_GE(g, -tolerance) << k << ", " << i;
+        ++at_bounds;
+      } else if (u(k, i) > problem.input_upper[i] - margin) {
+        EXPECT_LE(g, tolerance) << k << ", " << i;
+        ++at_bounds;
+      } else {
+        EXPECT_LE(std::abs(g), tolerance) << k << ", " << i;
+      }
+    }
+  }
+  EXPECT_GT(at_bounds, 0);
+}
+
 TEST(OptimalControl, IntervalDerivativesAreTheDiscreteMapOnALinearPlant) {
   const LinearPlant plant = small_plant();
   const OptimalControlProblem problem = problem_for(plant);
@@ -183,6 +244,13 @@ TEST(OptimalControl, BadProblemsAndStartsAreRefusedClearly) {
   problem = problem_for(plant);
   problem.interval_periods = 0;
   EXPECT_THAT(testing::error_message([&] { problem.validate(); }), HasSubstr("interval_periods must be at least 1"));
+  problem = problem_for(plant);
+  problem.input_lower = Eigen::Vector2d(-1.0, 1.0);
+  problem.input_upper = Eigen::Vector2d(1.0, 0.5);
+  EXPECT_THAT(testing::error_message([&] { problem.validate(); }), HasSubstr("input_lower exceeds input_upper"));
+  problem.input_upper.resize(0);
+  EXPECT_THAT(testing::error_message([&] { problem.validate(); }),
+              HasSubstr("input_upper has 0 entries, the plant needs 2"));
   problem = problem_for(plant);
   problem.sampled_position_integral = 1;
   EXPECT_THAT(testing::error_message([&] { problem.validate(); }), HasSubstr("sampled_position_integral 1"));

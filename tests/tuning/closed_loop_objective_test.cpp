@@ -1,6 +1,6 @@
 // The closed-loop objective: θ–D flights over seeded draws through the experiment library, the
 // same for any number of workers, scored by the mean cost or RMS error, a diverged draw by +∞;
-// and its search within an evaluation budget.
+// and its search within an evaluation budget, over θ–D's series or any controller's weights.
 #include <cmath>
 #include <limits>
 #include <string>
@@ -10,6 +10,8 @@
 #include <gtest/gtest.h>
 
 #include "core/error.hpp"
+#include "core/helicopter/helicopter.hpp"
+#include "core/helicopter/state.hpp"
 #include "tuning/closed_loop.hpp"
 
 namespace thetad::tuning {
@@ -58,9 +60,10 @@ TEST(ClosedLoop, MetricsAndTheirNames) {
 
 TEST(ClosedLoop, FliesEachSeedTheSameForAnyNumberOfWorkers) {
   const std::vector<std::uint64_t> seeds{3, 4, 5};
-  DrawFlights one(kScenario, one_second(), {}, 3, 1), two(kScenario, one_second(), {}, 3, 2);
-  const VectorXd k = Eigen::Vector2d(0.2, 0.7), l = Eigen::Vector2d(3.0, 0.5);
-  const std::vector<sim::RunSummary> a = one.fly(k, l, seeds), b = two.fly(k, l, seeds);
+  const Parameterization series = series_parameters({}, 3, FitOptions{});
+  DrawFlights one(kScenario, one_second(), series, 1), two(kScenario, one_second(), series, 2);
+  const VectorXd x = Eigen::Vector4d(0.2, 0.7, 3.0, 0.5);  // k, then l
+  const std::vector<sim::RunSummary> a = one.fly(x, seeds), b = two.fly(x, seeds);
   ASSERT_EQ(a.size(), 3u);
   for (std::size_t i = 0; i < seeds.size(); ++i) {
     EXPECT_EQ(a[i].status, sim::RunStatus::completed);
@@ -71,20 +74,65 @@ TEST(ClosedLoop, FliesEachSeedTheSameForAnyNumberOfWorkers) {
   EXPECT_NE(a[0].cost, a[1].cost);  // different draws
   EXPECT_EQ(mean_metric(a, Metric::cost), (a[0].cost + a[1].cost + a[2].cost) / 3.0);
   // The k, l flown are the ones asked for: the paper's k = l = 1 flies otherwise.
-  EXPECT_NE(one.fly({}, {}, {3})[0].cost, a[0].cost);
+  EXPECT_NE(one.fly(series.given, {3})[0].cost, a[0].cost);
 }
 
 TEST(ClosedLoop, SearchKeepsItsBudgetAndReportsWhatItFlew) {
-  DrawFlights flights(kScenario, one_second(), {}, 3, 2);
   FitOptions options;
   options.max_local_evaluations = 6;
+  DrawFlights flights(kScenario, one_second(), series_parameters({}, 3, options), 2);
   const std::vector<std::uint64_t> training{3, 4};
   const FitResult fit = tuning::fit(flights, training, Metric::rms_error, options);
   EXPECT_LE(fit.evaluations, 6);
   EXPECT_LE(fit.residual, fit.start_residual);
-  EXPECT_EQ(fit.start_residual, mean_metric(flights.fly({}, {}, training), Metric::rms_error));
-  EXPECT_EQ(fit.residual, mean_metric(flights.fly(fit.k, fit.l, training), Metric::rms_error));
+  EXPECT_EQ(fit.start_residual, mean_metric(flights.fly(flights.parameters().given, training), Metric::rms_error));
+  EXPECT_EQ(fit.residual, mean_metric(flights.fly(fit.x, training), Metric::rms_error));
+  EXPECT_EQ(fit.x.head(2), fit.k);
+  EXPECT_EQ(fit.x.tail(2), fit.l);
   EXPECT_THROW(tuning::fit(flights, {}, Metric::cost, options), Error);
+}
+
+// Any controller's weights, with the same objective and budget: the hover LQR's Q and R scaled by
+// groups, the positions' group the reference.
+TEST(ClosedLoop, TunesAnyControllersWeightsWithTheSameBudget) {
+  const heli::Helicopter plant;
+  const Parameterization weights = weight_parameters("lqr", {}, plant, 1.5);
+  // Velocities, angles (attitude and flapping), rates and integrals; five inputs.
+  ASSERT_EQ(weights.names.size(), 9u);
+  EXPECT_EQ(weights.names.front(), "log10 Q[m_per_s]");
+  EXPECT_EQ(weights.names.back(), "log10 R[delta_lat]");
+  EXPECT_EQ(weights.box.lower, VectorXd::Constant(9, -1.5));
+  EXPECT_EQ(weights.box.start, VectorXd::Zero(9));
+  // The start is the controller as given: the plant's design weights.
+  const DesignDefaults design = plant.design_defaults();
+  const auto diagonal = [](const YAML::Node& node) {
+    const auto values = node.as<std::vector<double>>();
+    return VectorXd(Eigen::Map<const VectorXd>(values.data(), static_cast<Eigen::Index>(values.size())));
+  };
+  EXPECT_EQ(diagonal(weights.given.settings["Q"]), design.state_weights);
+  VectorXd x = VectorXd::Zero(9);
+  x[0] = 1.0;   // velocities × 10
+  x[8] = -0.5;  // δ_lat's R / √10
+  const ControllerSpec moved = weights.spec(x, "moved");
+  const VectorXd Q = diagonal(moved.settings["Q"]), R = diagonal(moved.settings["R"]);
+  EXPECT_EQ(Q.head<3>(), design.state_weights.head<3>());  // positions: the reference group
+  EXPECT_DOUBLE_EQ(Q[heli::kU], 10.0 * design.state_weights[heli::kU]);
+  EXPECT_EQ(Q[heli::kPhi], design.state_weights[heli::kPhi]);
+  EXPECT_DOUBLE_EQ(R[4], design.input_weights[4] / std::sqrt(10.0));
+  EXPECT_EQ(R.head<4>(), design.input_weights.head<4>());
+
+  FitOptions options;
+  options.algorithm = "LN_COBYLA";
+  options.max_local_evaluations = 4;
+  DrawFlights flights(kScenario, one_second(), weights, 2);
+  const std::vector<std::uint64_t> training{3};
+  const FitResult fit = tuning::fit(flights, training, Metric::cost_dev, options);
+  EXPECT_LE(fit.evaluations, 4);
+  EXPECT_LE(fit.residual, fit.start_residual);
+  EXPECT_EQ(fit.start_residual, mean_metric(flights.fly(weights.given, training), Metric::cost_dev));
+  EXPECT_EQ(fit.residual, mean_metric(flights.fly(fit.x, training), Metric::cost_dev));
+  EXPECT_EQ(fit.k.size(), 0);
+  EXPECT_THROW(weight_parameters("lqr", {}, plant, 0.0), Error);
 }
 
 }  // namespace

@@ -39,11 +39,12 @@ TEST(DrawSeeds, OverlapIsRefusedNamingASharedSeed) {
 TEST(HeldOutValidation, FliesTheHeldOutSeedsAndComparesPairs) {
   RunControls controls;
   controls.duration = 1.0;
-  DrawFlights flights(THETAD_SOURCE_DIR "/scenarios/scenario-1.yaml", controls, {}, 3, 2);
+  DrawFlights flights(THETAD_SOURCE_DIR "/scenarios/scenario-1.yaml", controls,
+                      series_parameters({}, 3, FitOptions{}), 2);
   const std::vector<std::uint64_t> seeds{21, 22, 23};
   // Tuned = default (the paper's k = l = 1): every paired difference is zero.
-  const Eigen::VectorXd ones = Eigen::VectorXd::Ones(2);
-  const HeldOutValidation same = validate_held_out(flights, ones, ones, seeds, 1, 500);
+  const Eigen::VectorXd ones = Eigen::VectorXd::Ones(4);
+  const HeldOutValidation same = validate_held_out(flights, ones, seeds, 1, 500);
   EXPECT_EQ(same.scenario, "scenario-1");
   EXPECT_EQ(same.pairs(), 3);
   EXPECT_EQ(same.diverged_default() + same.diverged_tuned(), 0);
@@ -51,19 +52,20 @@ TEST(HeldOutValidation, FliesTheHeldOutSeedsAndComparesPairs) {
     EXPECT_EQ(same.default_runs[i].settings.seed, seeds[i]);
     EXPECT_EQ(same.tuned_runs[i].settings.seed, seeds[i]);
   }
-  for (const PairedComparison* c : {&same.cost, &same.rms_error}) {
+  ASSERT_TRUE(same.cost_dev);
+  for (const PairedComparison* c : {&same.cost, &same.rms_error, &*same.cost_dev}) {
     EXPECT_EQ(c->default_median, c->tuned_median);
     EXPECT_EQ(c->difference.median, 0.0);
     EXPECT_EQ(c->difference.low, 0.0);
     EXPECT_EQ(c->difference.high, 0.0);
   }
   // Another k, l: the differences are the per-seed differences of what was flown.
-  const HeldOutValidation other = validate_held_out(flights, Eigen::Vector2d(0.0, 0.0), ones, seeds, 1, 500);
+  const HeldOutValidation other = validate_held_out(flights, Eigen::Vector4d(0.0, 0.0, 1.0, 1.0), seeds, 1, 500);
   std::vector<double> differences;
   for (std::size_t i = 0; i < seeds.size(); ++i) differences.push_back(other.tuned_runs[i].cost - other.default_runs[i].cost);
   EXPECT_EQ(other.cost.difference.median, linear_quantile(differences, 0.5));
   EXPECT_NE(other.cost.difference.median, 0.0);
-  EXPECT_THROW(validate_held_out(flights, ones, ones, {}, 1), Error);
+  EXPECT_THROW(validate_held_out(flights, ones, {}, 1), Error);
 }
 
 }  // namespace

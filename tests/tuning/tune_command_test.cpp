@@ -84,7 +84,8 @@ TEST_F(TuneCommand, BadInputFailsWithOneLineAndWritesNothing) {
 TEST_F(TuneCommand, WritesASettingsFileThatRunAcceptsAndReusesItsRecord) {
   const Output first = thetad(tune("--record " + path("record.csv") + " --holdout-draws 3"));
   ASSERT_EQ(first.status, 0) << first.err;
-  EXPECT_THAT(first.out, HasSubstr("scenario=climb objective=sigma terms=3 algorithm=LN_BOBYQA samples=200 weighting=absolute"));
+  EXPECT_THAT(first.out, HasSubstr("scenario=climb controller=theta-d parameters=series objective=sigma terms=3 algorithm=LN_BOBYQA "
+                                    "samples=200 weighting=absolute"));
   EXPECT_THAT(first.out, HasSubstr("validation scenario=climb role=tuning-scenario draws=3 first_seed=8 pairs=3"));
   EXPECT_THAT(first.out, HasSubstr("validation scenario=climb metric=cost default_median="));
   EXPECT_THAT(first.out, HasSubstr("validation scenario=climb metric=rms-error default_median="));
@@ -145,7 +146,8 @@ TEST_F(TuneCommand, EntriesAndClosedLoopObjectivesAreReportedWithTheirSettings) 
                                   "--max-evaluations 5";
   const Output loop = thetad(closed_loop);
   ASSERT_EQ(loop.status, 0) << loop.err;
-  EXPECT_THAT(loop.out, HasSubstr("objective=closed-loop terms=3 algorithm=LN_COBYLA metric=rms-error training_draws=2"));
+  EXPECT_THAT(loop.out, HasSubstr("controller=theta-d parameters=series objective=closed-loop terms=3 algorithm=LN_COBYLA "
+                                  "metric=rms-error training_draws=2"));
   EXPECT_THAT(loop.out, HasSubstr("mean_rms_error_m_default="));
   report = nlohmann::json::parse(thetad::testing::read_text(dir_ / "loop" / "tuning.json"));
   EXPECT_EQ(report["objective"]["name"], "closed-loop");
@@ -156,6 +158,27 @@ TEST_F(TuneCommand, EntriesAndClosedLoopObjectivesAreReportedWithTheirSettings) 
   std::vector<std::uint64_t> held_out;
   for (const auto& run : report["validation"][0]["runs"]) held_out.push_back(run["seed"].get<std::uint64_t>());
   EXPECT_EQ(held_out, (std::vector<std::uint64_t>{9, 10, 11}));
+
+  // Another controller's weights, the same objective and budget: the SDRE's settings file flies.
+  const Output weights = thetad("tune --scenario " + path("climb.yaml") + " --duration 1 --out " + path("weights") +
+                                " --controller sdre --objective closed-loop --metric cost-dev --draws 1 --holdout-draws 2 "
+                                "--max-evaluations 3 --weight-bounds 1");
+  ASSERT_EQ(weights.status, 0) << weights.err;
+  EXPECT_THAT(weights.out, HasSubstr("controller=sdre parameters=weights objective=closed-loop"));
+  EXPECT_THAT(weights.out, HasSubstr("log10 R[T_mr]="));
+  EXPECT_THAT(weights.out, HasSubstr("metric=cost-dev default_median="));
+  report = nlohmann::json::parse(thetad::testing::read_text(dir_ / "weights" / "tuning.json"));
+  EXPECT_EQ(report["controller"], "sdre");
+  EXPECT_EQ(report["parameters"]["kind"], "weights");
+  EXPECT_EQ(report["parameters"]["names"].size(), 9u);
+  EXPECT_EQ(report["parameters"]["upper"][0], 1.0);
+  EXPECT_LE(report["residual_tuned"].get<double>(), report["residual_default"].get<double>());
+  EXPECT_TRUE(report["validation"][0].contains("cost_dev"));
+  const Output run = thetad("run --scenario " + path("climb.yaml") + " --duration 0.2 --controller sdre --settings " +
+                            path("weights/sdre-tuned.yaml") + " --out " + path("weights-run"));
+  EXPECT_EQ(run.status, 0) << run.err;
+  EXPECT_THAT(thetad(tune("--controller lqr --parameters series")).err, HasSubstr("only theta-d has a series"));
+  EXPECT_THAT(thetad(tune("--controller lqr")).err, HasSubstr("tuned by the closed loop only"));
 }
 
 // thetad approximation: bad input is one line and nothing written; a short flight writes the CSV

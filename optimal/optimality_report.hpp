@@ -1,0 +1,31 @@
+#pragma once
+
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "experiment/run_files.hpp"
+#include "optimal/optimality_gap.hpp"
+
+namespace thetad {
+
+inline constexpr const char* kOptimalityFormat = "thetad-optimality-3";
+
+// Every run of a gap in the order its files are written and reported: the flights, then per
+// optimum the optimum and, with bounds, the unbounded one.
+std::vector<RunResult> optimality_runs(const OptimalityGap& gap);
+
+// optimality.json (kOptimalityFormat; docs/optimality.md): the segment, the cost minimized, the
+// bounds, per optimum its solves (Ipopt's status, iterations, largest defect, J and J_dev, result
+// file), per controller its cost over the segment and its gaps. `files` are those of
+// optimality_runs(gap), in order.
+nlohmann::ordered_json optimality_json(const Flight& flight, const OptimalityGap& gap, const OptimalityOptions& options,
+                                       const std::vector<RunFiles>& files);
+
+// Whether every solve converged.
+bool optimality_converged(const OptimalityGap& gap);
+// Whether every unbounded optimum costs no more than its bounded one, within `relative`: the check
+// that both solves found minima (dropping bounds cannot cost more).
+bool unbounded_at_most_bounded(const OptimalityGap& gap, double relative = 1e-6);
+
+}  // namespace thetad
