@@ -75,6 +75,7 @@ std::string CampaignWorker::provenance() {
     shared.initial_offset.reset();
     shared.initial_attitude_offset.reset();
     shared.speed_scale.reset();
+    shared.course.reset();
     nlohmann::ordered_json j = to_json(shared);
     j.erase("seed");
     scenarios.push_back(std::move(j));

@@ -17,6 +17,12 @@ void offset_axis(RunControls& controls, int axis, double value) {
   (*controls.initial_offset)[axis] = value;
 }
 
+// A switch: 0 off, 1 on (a factor is a number, and anything between would be a typo).
+bool switch_value(const char* name, double value) {
+  if (value != 0.0 && value != 1.0) throw Error(std::string(name) + " is a switch: 0 (off) or 1 (on), got " + std::to_string(value));
+  return value == 1.0;
+}
+
 // The attitude offset likewise, read in degrees (as people state angles), flown in radians.
 void attitude_axis(RunControls& controls, int axis, double degrees) {
   if (!controls.initial_attitude_offset) controls.initial_attitude_offset = Eigen::Vector3d::Zero();
@@ -49,6 +55,10 @@ const std::vector<Factor>& factors() {
        [](double v, RunControls& c) { attitude_axis(c, 2, v); }},
       {"trajectory_speed_scale", "", "flies the same path this many times faster (the scenario's duration / s)",
        0.01, 100.0, [](double v, RunControls& c) { c.speed_scale = v; }},
+      {"course", "deg", "turns the scenario's trajectory about its start, north towards east (the heading stays)",
+       -360.0, 360.0, [](double v, RunControls& c) { c.course = v * std::numbers::pi / 180.0; }},
+      {"actuator_limits", "", "the servo magnitude and rate limits (docs/model.md §12): 1 on, 0 off", 0.0, 1.0,
+       [](double v, RunControls& c) { c.actuator_limits = switch_value("actuator_limits", v); }},
       {"dt", "s", "plant (RK4) step; must divide the controller period", 0.0, kInf,
        [](double v, RunControls& c) { c.dt = v; }},
       {"duration", "s", "flight duration (shorter than the scenario: the flight stops there)", 0.0,

@@ -28,7 +28,7 @@ Flight Flight::from_text(const std::string& text, const std::string& file, const
 }
 
 Flight::Flight(const ScenarioText& source, const RunControls& controls)
-    : scenario_(at_speed(controls, parse_scenario(source.text, source.file))),
+    : scenario_(as_flown(controls, parse_scenario(source.text, source.file))),
       settings_(scenario_.simulation_settings()),
       initial_state_(offset_initial_state(controls, scenario_.initial_state)) {
   // The very bytes it was parsed from, so that a replay needs no file that may have changed.
@@ -51,6 +51,7 @@ Flight::Flight(const ScenarioText& source, const RunControls& controls)
   if (controls.initial_offset) provenance_.initial_offset = entries(*controls.initial_offset);
   if (controls.initial_attitude_offset) provenance_.initial_attitude_offset = entries(*controls.initial_attitude_offset);
   provenance_.speed_scale = controls.speed_scale;
+  provenance_.course = controls.course;
   settings_.check_memory(log_width());
 }
 
@@ -60,8 +61,8 @@ Flight Flight::of_plant(std::shared_ptr<const SdcPlant> plant, const std::string
   if (initial_state.size() != plant->state_dim())
     throw Error("plant " + name + ": the initial state has " + std::to_string(initial_state.size()) +
                 " entries, the plant " + std::to_string(plant->state_dim()) + " states");
-  if (controls.initial_offset || controls.initial_attitude_offset || controls.speed_scale)
-    throw Error("plant " + name + ": initial offsets and speed scales apply to the helicopter's scenarios");
+  if (controls.initial_offset || controls.initial_attitude_offset || controls.speed_scale || controls.course)
+    throw Error("plant " + name + ": initial offsets, speed scales and courses apply to the helicopter's scenarios");
   // It flies as it is (sim::NoDisturbances): a switch that turns a disturbance on would be recorded
   // as on and have no effect.
   for (const auto& asked : {controls.parameter_uncertainty, controls.wind_gust, controls.measurement_noise,

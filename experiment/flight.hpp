@@ -50,7 +50,7 @@ class Flight {
   static Flight of_plant(const std::string& name, const std::optional<Eigen::VectorXd>& initial_state,
                          const RunControls& controls);
 
-  // The scenario as flown: at the controls' speed_scale (a plant's flight: named after the plant,
+  // The scenario as flown: at the controls' speed_scale and course (a plant's flight: named after the plant,
   // holding the origin).
   const Scenario& scenario() const { return scenario_; }
   // Where the plant starts: the scenario's initial state, moved and turned by the controls'

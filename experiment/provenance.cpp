@@ -27,6 +27,7 @@ nlohmann::ordered_json to_json(const Provenance& p) {
   if (p.initial_offset) j["initial_offset_m"] = *p.initial_offset;
   if (p.initial_attitude_offset) j["initial_attitude_offset_rad"] = *p.initial_attitude_offset;
   if (p.speed_scale) j["trajectory_speed_scale"] = *p.speed_scale;
+  if (p.course) j["course_rad"] = *p.course;
   if (!p.initial_state.empty()) j["initial_state"] = p.initial_state;
   if (!p.host.empty()) j["host"] = p.host;
   if (!p.start_time.empty()) j["start_time_utc"] = p.start_time;

@@ -31,6 +31,7 @@ struct Provenance {
   std::optional<std::array<double, 3>> initial_offset;           // m, north-east-down
   std::optional<std::array<double, 3>> initial_attitude_offset;  // rad: roll, pitch, yaw
   std::optional<double> speed_scale;
+  std::optional<double> course;  // rad
   // Where a plant's flight starts (a scenario's file says it for the helicopter; empty there).
   std::vector<double> initial_state;
   // Wall-clock facts: empty when the run was asked for byte-identical output (no timing).

@@ -33,6 +33,7 @@ RunControls controls_of(const Json& settings, const Json& provenance) {
     controls.initial_attitude_offset = vector(provenance["initial_attitude_offset_rad"]);
   if (provenance.contains("trajectory_speed_scale"))
     controls.speed_scale = provenance["trajectory_speed_scale"].get<double>();
+  if (provenance.contains("course_rad")) controls.course = provenance["course_rad"].get<double>();
   controls.duration = settings.at("duration_s").get<double>();
   controls.dt = settings.at("dt_s").get<double>();
   controls.log_every = settings.at("log_every").get<int>();

@@ -96,8 +96,9 @@ Eigen::VectorXd offset_initial_state(const RunControls& controls, const Eigen::V
   return x;
 }
 
-Scenario at_speed(const RunControls& controls, const Scenario& scenario) {
-  return controls.speed_scale ? scenario.at_speed(*controls.speed_scale) : scenario;
+Scenario as_flown(const RunControls& controls, const Scenario& scenario) {
+  const Scenario faster = controls.speed_scale ? scenario.at_speed(*controls.speed_scale) : scenario;
+  return controls.course ? faster.turned(*controls.course) : faster;
 }
 
 }  // namespace thetad

@@ -35,6 +35,8 @@ struct RunControls {
   // The scenario's trajectory flown this many times faster (Scenario::at_speed): the same path in
   // 1/s of the time, the flight's duration included. `duration`, when also given, is the flown time.
   std::optional<double> speed_scale;
+  // rad: the scenario's trajectory turned about its start (Scenario::turned), north towards east.
+  std::optional<double> course;
   std::optional<bool> summary_only;      // true: no log, the summary only
   std::optional<bool> timing;            // false: no wall-clock figure anywhere (byte-identical reruns)
 };
@@ -42,14 +44,15 @@ struct RunControls {
 // `settings` with `controls` applied. The controller keeps sampling at the scenario's period with
 // zero-order hold, so a new dt must divide that period: otherwise thetad::Error names both. A scale
 // or onset out of range is an error naming it. (The initial offsets act on the initial state and
-// speed_scale on the scenario: Flight.)
+// speed_scale and course on the scenario: Flight.)
 void apply(const RunControls& controls, sim::SimulationSettings& settings);
 
 // `initial_state` moved by controls.initial_offset and turned by controls.initial_attitude_offset
 // (unchanged without them); a non-finite offset is an error.
 Eigen::VectorXd offset_initial_state(const RunControls& controls, const Eigen::VectorXd& initial_state);
 
-// `scenario` flown at controls.speed_scale (itself without one).
-Scenario at_speed(const RunControls& controls, const Scenario& scenario);
+// `scenario` as the controls fly it: at controls.speed_scale, turned by controls.course (itself
+// without either).
+Scenario as_flown(const RunControls& controls, const Scenario& scenario);
 
 }  // namespace thetad

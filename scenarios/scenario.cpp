@@ -278,6 +278,12 @@ Scenario Scenario::at_speed(double speed_scale) const {
   return faster;
 }
 
+Scenario Scenario::turned(double course) const {
+  Scenario result = *this;
+  result.trajectory = trajectory.turned(course);
+  return result;
+}
+
 sim::SimulationSettings Scenario::simulation_settings(sim::SimulationSettings base) const {
   base.duration = simulation_duration.value_or(duration);
   if (dt) base.dt = *dt;

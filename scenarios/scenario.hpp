@@ -55,6 +55,10 @@ struct Scenario {
   // its time: the plant and controller steps, the wind (its onset too) and the noises. Throws
   // thetad::Error unless s is positive and finite.
   Scenario at_speed(double speed_scale) const;
+  // This scenario with its trajectory turned by `course` (rad, north towards east) about its start
+  // (PhasedTrajectory::turned): a leg written northwards flown on any course, the initial state
+  // (heading included) as written. Throws thetad::Error unless the angle is finite.
+  Scenario turned(double course) const;
 
   // `base` with this scenario's duration and overrides applied.
   sim::SimulationSettings simulation_settings(sim::SimulationSettings base = {}) const;

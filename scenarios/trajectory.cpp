@@ -200,7 +200,8 @@ void PhasedTrajectory::append(std::string name, double end_time, const Motion& m
     throw Error("phase '" + name + "': must end after it starts (" + std::to_string(start_time) + " s), got " +
                 std::to_string(end_time) + " s");
   validate(name, motion);
-  const Eigen::Vector3d start_position = end_position();
+  // The phases are stored unturned: each starts where the previous one ended, as written.
+  const Eigen::Vector3d start_position = phases_.empty() ? start_ : phases_.back().end_position();
   phases_.push_back({std::move(name), start_time, end_time, start_position, motion});
 }
 
@@ -210,7 +211,26 @@ PhasedTrajectory PhasedTrajectory::time_scaled(double speed_scale) const {
   PhasedTrajectory scaled(start_);
   for (const Phase& phase : phases_)
     scaled.append(phase.name, phase.end_time / speed_scale, on_faster_clock(phase.motion, speed_scale));
+  scaled.turned_ = turned_;
+  scaled.turn_ = turn_;
   return scaled;
+}
+
+PhasedTrajectory PhasedTrajectory::turned(double course) const {
+  if (!std::isfinite(course)) throw Error("trajectory course " + std::to_string(course) + ": must be finite");
+  PhasedTrajectory result = *this;
+  const double c = std::cos(course), s = std::sin(course);
+  Eigen::Matrix3d turn;
+  turn << c, -s, 0.0,  //
+      s, c, 0.0,       //
+      0.0, 0.0, 1.0;
+  result.turn_ = turn * turn_;
+  result.turned_ = true;
+  return result;
+}
+
+Eigen::Vector3d PhasedTrajectory::turned_offset(const Eigen::Vector3d& position) const {
+  return turned_ ? Eigen::Vector3d(start_ + turn_ * (position - start_)) : position;
 }
 
 const PhasedTrajectory::Phase* PhasedTrajectory::phase_at(double t) const {
@@ -224,12 +244,18 @@ const PhasedTrajectory::Phase* PhasedTrajectory::phase_at(double t) const {
 Eigen::Vector3d PhasedTrajectory::position(double t) const {
   if (phases_.empty()) return start_;
   const Phase* phase = phase_at(t);
-  return phase ? phase->position(t) : phases_.back().end_position();
+  return turned_offset(phase ? phase->position(t) : phases_.back().end_position());
 }
 
 Derivatives PhasedTrajectory::derivatives(double t) const {
   const Phase* phase = phase_at(t);
-  return phase && t >= 0.0 ? phase->derivatives(t) : Derivatives{};
+  if (!phase || t < 0.0) return {};
+  Derivatives d = phase->derivatives(t);
+  if (turned_) {
+    d.velocity = turn_ * d.velocity;
+    d.acceleration = turn_ * d.acceleration;
+  }
+  return d;
 }
 
 }  // namespace thetad

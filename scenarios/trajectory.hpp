@@ -134,20 +134,33 @@ class PhasedTrajectory final : public ReferenceTrajectory {
   const Eigen::Vector3d& start_position() const { return start_; }
   // End of the last phase (0 without phases).
   double end_time() const { return phases_.empty() ? 0.0 : phases_.back().end_time; }
-  Eigen::Vector3d end_position() const { return phases_.empty() ? start_ : phases_.back().end_position(); }
+  Eigen::Vector3d end_position() const {
+    return turned_offset(phases_.empty() ? start_ : phases_.back().end_position());
+  }
 
   // The same path flown `speed_scale` times faster: r_s(t) = r(s t), so velocities are s times and
   // accelerations s² times the original's. Every phase ends at end_time / s, and each motion's
   // own clock follows (periods / s, Accelerate's speeds × s); the positions, targets and
   // amplitudes stay. Throws thetad::Error unless s is positive and finite.
   PhasedTrajectory time_scaled(double speed_scale) const;
+  // The same trajectory turned by `course` (rad, clockwise seen from above: north towards east)
+  // about the vertical through its start: a path that went north goes on that course, its
+  // velocities and accelerations turned with it, the heights unchanged. Composes with earlier
+  // turns and with time_scaled. Throws thetad::Error unless the angle is finite.
+  PhasedTrajectory turned(double course) const;
 
  private:
   // The phase that holds t, or null past the end.
   const Phase* phase_at(double t) const;
 
+  // The phases' NED offsets from start_, turned by turn_ when turned_ (unturned, nothing is
+  // recomputed, so that the commands stay bit for bit those of the file).
+  Eigen::Vector3d turned_offset(const Eigen::Vector3d& position) const;
+
   Eigen::Vector3d start_;
   std::vector<Phase> phases_;
+  bool turned_ = false;
+  Eigen::Matrix3d turn_ = Eigen::Matrix3d::Identity();
 };
 
 }  // namespace thetad

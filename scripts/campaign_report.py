@@ -24,7 +24,9 @@ import campaign_stats  # noqa: E402
 import plot_campaign  # noqa: E402
 
 FORMAT = "thetad-campaign-1"
-FORMAT_VERSION = "2"  # J_dev (cost_dev) and the information set of each run
+# The versions this report reads: 2 added J_dev (cost_dev) and the information set of each run, 3 the
+# factors course and actuator_limits (columns it reads only when they were swept).
+FORMAT_VERSIONS = ("2", "3")
 # The figures summarized per controller and cell: column, what it is, unit.
 FIGURES = [
     ("rms_error_m", "RMS position error", "m"),
@@ -44,9 +46,9 @@ def read_campaign(database):
         if meta.get("format") != FORMAT:
             raise SystemExit(f"{database}: not a thetad campaign database ({FORMAT})")
         version = meta.get("format_version", "1")
-        if version != FORMAT_VERSION:
+        if version not in FORMAT_VERSIONS:
             raise SystemExit(f"{database}: a campaign database of format_version {version}, written by another "
-                             f"thetad; this report reads version {FORMAT_VERSION}: run the campaign anew")
+                             f"thetad; this report reads versions {', '.join(FORMAT_VERSIONS)}: run the campaign anew")
         runs = pd.read_sql("SELECT * FROM runs ORDER BY run_index", connection)
     return meta, runs
 

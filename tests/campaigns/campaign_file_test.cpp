@@ -156,6 +156,19 @@ TEST(CampaignFile, TheShippedCampaignsAreValid) {
   const Campaign wide = load_campaign(folder / "envelope-wide.yaml");
   EXPECT_EQ(wide.run_count(), 4 * 5 * 4 * 2);
   EXPECT_EQ(wide.base_seed, envelope.base_seed);
+  // The fair study: 4 controllers x 3 information sets x 2 weight sets, labelled by all three.
+  const std::filesystem::path fair = folder / "fair";
+  const Campaign scenario_1 = load_campaign(fair / "scenario-1.yaml");
+  ASSERT_EQ(scenario_1.controllers.size(), 24u);
+  EXPECT_EQ(scenario_1.controllers.front().label, "theta-d.paper.none");
+  EXPECT_EQ(scenario_1.controllers.back().label, "lqr-scheduled.designed.velocity+trim");
+  EXPECT_EQ(scenario_1.controllers.back().settings["feedforward"].as<std::string>(), "velocity+trim");
+  EXPECT_EQ(scenario_1.run_count(), 24 * 10);
+  const Campaign legs = load_campaign(fair / "legs.yaml");
+  EXPECT_EQ(legs.cells.size(), 4u);  // the courses
+  EXPECT_EQ(legs.run_count(), 4 * 4 * 24 * 5);
+  EXPECT_EQ(load_campaign(fair / "legs-20.yaml").run_count(), 2 * 24 * 5);
+  EXPECT_EQ(load_campaign(fair / "theta-d-ablation.yaml").run_count(), 2 * 10 * 10);
 }
 
 }  // namespace

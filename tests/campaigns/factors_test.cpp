@@ -16,8 +16,8 @@ using ::testing::HasSubstr;
 TEST(Factors, EachSetsItsOverride) {
   RunControls controls;
   apply({{"uncertainty_scale", 2.0}, {"gust_scale", 1.5}, {"gust_onset", 3.0}, {"noise_scale", 0.5},
-         {"initial_offset_y", -1.0}, {"initial_offset_z", 0.5}, {"trajectory_speed_scale", 1.25}, {"dt", 5e-4},
-         {"duration", 7.0}},
+         {"initial_offset_y", -1.0}, {"initial_offset_z", 0.5}, {"trajectory_speed_scale", 1.25}, {"course", 90.0},
+         {"dt", 5e-4}, {"duration", 7.0}},
         controls);
   EXPECT_EQ(controls.uncertainty_scale, 2.0);
   EXPECT_EQ(controls.gust_scale, 1.5);
@@ -26,6 +26,7 @@ TEST(Factors, EachSetsItsOverride) {
   EXPECT_EQ(controls.initial_offset, Eigen::Vector3d(0.0, -1.0, 0.5));
   EXPECT_FALSE(controls.initial_attitude_offset);
   EXPECT_EQ(controls.speed_scale, 1.25);
+  EXPECT_DOUBLE_EQ(*controls.course, std::numbers::pi / 2.0);
   EXPECT_EQ(controls.dt, 5e-4);
   EXPECT_EQ(controls.duration, 7.0);
   EXPECT_THROW(apply({{"speed_scale", 2.0}}, controls), Error);

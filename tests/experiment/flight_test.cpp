@@ -279,20 +279,23 @@ TEST_F(FlightFiles, AReplayFliesTheSameRunFromTheResultFileAlone) {
   EXPECT_THAT(edited.differences[0], HasSubstr("cost"));
 }
 
-// A kept campaign log replays too: the initial offsets and the speed scale act outside the
+// A kept campaign log replays too: the initial offsets, the speed scale and the course act outside the
 // simulation settings, so the result file records them with the seed.
 TEST_F(FlightFiles, AReplayFliesTheSameOffsetAndSpeedScaledRun) {
   RunControls controls = seconds(0.3);
   controls.initial_offset = Eigen::Vector3d(0.5, -0.25, 0.125);
   controls.initial_attitude_offset = Eigen::Vector3d(0.1, -0.05, 0.2);
   controls.speed_scale = 1.5;
+  controls.course = 0.75;
   const RunFiles files = write_run_files(fly(Flight(kScenario, controls), "lqr"), dir_);
   EXPECT_THAT(read(files.json), HasSubstr("\"trajectory_speed_scale\": 1.5"));
+  EXPECT_THAT(read(files.json), HasSubstr("\"course_rad\": 0.75"));
   const Replay again = replay(files.json);
   EXPECT_TRUE(again.differences.empty()) << again.differences.front();
   EXPECT_EQ(again.result.provenance.initial_offset, (std::array<double, 3>{0.5, -0.25, 0.125}));
   EXPECT_EQ(again.result.provenance.initial_attitude_offset, (std::array<double, 3>{0.1, -0.05, 0.2}));
   EXPECT_EQ(again.result.provenance.speed_scale, 1.5);
+  EXPECT_EQ(again.result.provenance.course, 0.75);
 }
 
 // The result records the scenario's text: editing (or deleting) the file after the run changes

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numbers>
 
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include "core/error.hpp"
@@ -177,6 +178,35 @@ TEST(Trajectory, ATimeScaledTrajectoryFliesTheSamePathFaster) {
   EXPECT_THROW(trajectory.time_scaled(0.0), Error);
   EXPECT_THROW(trajectory.time_scaled(-1.0), Error);
   EXPECT_THROW(trajectory.time_scaled(std::nan("")), Error);
+}
+
+// Turned by a course about its start: every offset from the start, velocity and acceleration
+// turned (north towards east), heights as they were; turns compose, and with the speed scale.
+TEST(Trajectory, ATurnedTrajectoryFliesThePathOnAnotherCourse) {
+  PhasedTrajectory trajectory(Eigen::Vector3d(1.0, 2.0, -3.5));
+  trajectory.append("accelerate", 10.0, Accelerate{Eigen::Vector3d::UnitX(), 0.0, 5.0});
+  trajectory.append("climb", 14.0, Blend{{0.0, 0.0, -2.0}});
+  trajectory.append("circle", 30.0, Circle{6.0, 16.0, 1.0, false});
+  const double course = kPi / 2.0;  // east
+  const PhasedTrajectory east = trajectory.turned(course);
+  const Eigen::Matrix3d turn = Eigen::AngleAxisd(course, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  for (double t = -1.0; t < 35.0; t += 0.41) {
+    expect_near(east.position(t) - trajectory.start_position(),
+                turn * (trajectory.position(t) - trajectory.start_position()), 1e-12);
+    expect_near(east.velocity(t), turn * trajectory.velocity(t), 1e-12);
+    expect_near(east.acceleration(t), turn * trajectory.acceleration(t), 1e-12);
+    EXPECT_NEAR(east.position(t).z(), trajectory.position(t).z(), 1e-12);
+  }
+  // The leg north at 5 m/s now goes east.
+  expect_near(east.velocity(10.0 - 1e-9), Eigen::Vector3d(0.0, 5.0, 0.0), 1e-6);
+  expect_near(east.end_position() - trajectory.start_position(),
+              turn * (trajectory.end_position() - trajectory.start_position()), 1e-12);
+  // Two quarter turns make a half; a turned trajectory keeps its turn when flown faster.
+  expect_near(east.turned(course).position(12.0), trajectory.turned(kPi).position(12.0), 1e-12);
+  expect_near(east.time_scaled(2.0).position(6.0), east.position(12.0), 1e-9);
+  // No turn asked, nothing recomputed: the commands are those of the file, bit for bit.
+  EXPECT_EQ(trajectory.time_scaled(1.0).position(12.3), trajectory.position(12.3));
+  EXPECT_THROW(trajectory.turned(std::nan("")), Error);
 }
 
 TEST(Trajectory, RejectsPhasesThatDoNotMoveForwardAndBadPeriods) {
