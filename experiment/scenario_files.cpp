@@ -2,6 +2,7 @@
 
 #include <dlfcn.h>
 
+#include <algorithm>
 #include <cstdlib>
 
 #include "core/error.hpp"
@@ -27,24 +28,50 @@ std::vector<fs::path> data_directories() {
   return folders;
 }
 
-fs::path find_scenario(const std::string& file_or_name) {
+std::vector<std::string> shipped_names(const std::string& folder) {
+  std::error_code error;
+  for (const fs::path& data : data_directories()) {
+    if (!fs::is_directory(data / folder, error)) continue;
+    std::vector<std::string> names;
+    for (const auto& entry : fs::directory_iterator(data / folder, error)) {
+      const std::string file = entry.path().filename().string();
+      if (entry.is_regular_file(error) && entry.path().extension() == ".yaml" && !file.ends_with(".settings.yaml"))
+        names.push_back(entry.path().stem().string());
+    }
+    std::sort(names.begin(), names.end());
+    return names;
+  }
+  return {};
+}
+
+fs::path find_shipped(const std::string& file_or_name, const std::string& folder, const std::string& kind) {
   std::error_code error;
   if (fs::is_regular_file(file_or_name, error)) return file_or_name;
   const fs::path given(file_or_name);
   std::string looked;
-  if (!file_or_name.empty() && !given.has_parent_path()) {
-    const std::string file = given.extension() == ".yaml" ? file_or_name : file_or_name + ".yaml";
-    for (const fs::path& folder : data_directories()) {
-      const fs::path candidate = folder / "scenarios" / file;
+  if (!file_or_name.empty() && given.is_relative()) {
+    const fs::path file = given.extension() == ".yaml" ? given : fs::path(file_or_name + ".yaml");
+    for (const fs::path& data : data_directories()) {
+      const fs::path candidate = data / folder / file;
       if (fs::is_regular_file(candidate, error)) return candidate;
-      looked += (looked.empty() ? "" : ", ") + (folder / "scenarios").string();
+      looked += (looked.empty() ? "" : ", ") + (data / folder).string();
     }
   }
   // A name from the command line may hold any bytes; the message must still be UTF-8.
   const std::string name = escaped_utf8(file_or_name);
-  if (fs::exists(given, error)) throw Error("scenario " + name + ": not a regular file");
-  throw Error("scenario '" + name + "': no such file" +
-              (looked.empty() ? std::string() : ", nor a shipped scenario of that name (looked in " + looked + ")"));
+  if (fs::exists(given, error)) throw Error(kind + " " + name + ": not a regular file");
+  std::string shipped;
+  for (const std::string& known : shipped_names(folder)) shipped += (shipped.empty() ? "" : ", ") + known;
+  throw Error(kind + " '" + name + "': no such file" +
+              (looked.empty() ? std::string()
+                              : ", nor a shipped " + kind + " of that name (shipped: " + shipped + "; looked in " +
+                                    looked + ")"));
+}
+
+fs::path find_scenario(const std::string& file_or_name) { return find_shipped(file_or_name, "scenarios", "scenario"); }
+
+fs::path find_campaign(const std::string& file_or_name) {
+  return find_shipped(file_or_name, "scenarios/campaigns", "campaign");
 }
 
 }  // namespace thetad

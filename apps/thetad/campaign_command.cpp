@@ -12,6 +12,7 @@
 #include "campaigns/cost_estimate.hpp"
 #include "core/error.hpp"
 #include "experiment/progress.hpp"
+#include "experiment/scenario_files.hpp"
 
 namespace thetad::app {
 
@@ -22,7 +23,9 @@ CLI::App* add_campaign_command(CLI::App& app, CampaignArguments& a) {
   campaign->require_subcommand(1);
 
   a.run = campaign->add_subcommand("run", "Fly a campaign file into DIR/campaign.sqlite (threads, or ranks under mpirun)");
-  a.run->add_option("file", a.file, "The campaign file (docs/campaigns.md)")->required();
+  a.run->add_option("file", a.file,
+                    "The campaign file (docs/campaigns.md), or the name of a shipped one (scenario-1-paired, fair/legs)")
+      ->required();
   a.run->add_option("--out", a.out, "Output directory (holds campaign.sqlite)");
   a.run->add_option("--jobs", a.jobs, "Worker threads (default: every core; one per rank under mpirun)")
       ->check(CLI::Range(1, 4096));
@@ -69,7 +72,7 @@ int dry_run(const Campaign& campaign, const CampaignArguments& a) {
 }
 
 int run(const CampaignArguments& a) {
-  const Campaign campaign = load_campaign(a.file);
+  const Campaign campaign = load_campaign(find_campaign(a.file.string()));
   CampaignOptions options;
   options.shard = parse_shard(a.shard);
   if (a.dry_run) return dry_run(campaign, a);

@@ -15,6 +15,7 @@
 #include "apps/thetad/design_lqr_command.hpp"
 #include "apps/thetad/weights_command.hpp"
 #include "apps/thetad/optimal_command.hpp"
+#include "apps/thetad/option_suggestion.hpp"
 #include "apps/thetad/run_command.hpp"
 #include "apps/thetad/tune_command.hpp"
 #include "core/text_file.hpp"
@@ -37,8 +38,9 @@ int main(int argc, char** argv) {
   app.fallthrough();
   // Bad arguments are one line too, in the same form as every other error; the arguments it quotes
   // may hold any bytes, and the line must be UTF-8 (escaped_utf8), as every error line below.
-  app.failure_message([](const CLI::App*, const CLI::Error& error) {
-    return "thetad: error: " + thetad::escaped_utf8(error.what()) + " (see --help)\n";
+  app.failure_message([](const CLI::App* failed, const CLI::Error& error) {
+    return "thetad: error: " + thetad::escaped_utf8(error.what()) + thetad::app::option_suggestion(*failed) +
+           " (see --help)\n";
   });
 
   std::filesystem::path demo_out = "out";

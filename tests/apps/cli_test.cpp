@@ -161,4 +161,29 @@ TEST_F(Cli, BadArgumentsAreOneLine) {
   EXPECT_THAT(output.out, Not(HasSubstr("Usage")));
 }
 
+// The small traps of a first hour: a scenario name that is not shipped lists those that are; a
+// mistyped option gets the nearest one; a shipped campaign is named like a shipped scenario.
+TEST_F(Cli, NamesAndOptionsThatAreNearlyRightSayWhatIsThere) {
+  Output output = thetad("run --scenario scenario-3 --controller lqr --out " + path("out"));
+  EXPECT_EQ(output.status, 1);
+  EXPECT_THAT(output.err, HasSubstr("scenario 'scenario-3': no such file, nor a shipped scenario of that name "
+                                    "(shipped: fast-forward, hover-hold, hover-step, hover-to-hover, scenario-1, "
+                                    "scenario-2; looked in "));
+  output = thetad("run --scenaro scenario-1 --controller lqr --out " + path("out"));
+  EXPECT_EQ(output.status, 1);
+  EXPECT_THAT(output.err, HasSubstr("(did you mean --scenario?)"));
+  output = thetad("compare --scenario scenario-1 --controlers lqr --out " + path("out"));
+  EXPECT_THAT(output.err, HasSubstr("(did you mean --controllers?)"));
+  output = thetad("run --frobnicate --out " + path("out"));
+  EXPECT_THAT(output.err, Not(HasSubstr("did you mean")));
+  output = thetad("campaign run fair/legs-20 --dry-run --pilot 0.01");
+  EXPECT_EQ(output.status, 0) << output.err;
+  EXPECT_THAT(output.out, HasSubstr("fair-legs-20: 1 scenario(s) x 24 controller(s) x 2 cell(s) x 5 draws = 240 runs"));
+  output = thetad("campaign run scenario-1-paired-fsat --dry-run");
+  EXPECT_THAT(output.err, HasSubstr("campaign 'scenario-1-paired-fsat': no such file, nor a shipped campaign of that "
+                                    "name (shipped: envelope, envelope-quick, envelope-sdre, envelope-wide, "
+                                    "scenario-1-paired, scenario-1-paired-fast, scenario-1-paired-sdre; looked in "));
+  EXPECT_FALSE(fs::exists(dir_ / "out"));
+}
+
 }  // namespace
