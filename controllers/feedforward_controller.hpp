@@ -36,6 +36,9 @@ class FeedForwardController final : public Controller {
   void control(double t, const Eigen::Ref<const Eigen::VectorXd>& measured_state, const Reference& reference,
                Eigen::Ref<Eigen::VectorXd> u) override;
   std::vector<std::pair<std::string, double>> counters() const override { return inner_->counters(); }
+  // The inner controller's, of its decision variable v (docs/model.md §8.4).
+  std::vector<CertificateColumn> certificate_columns() const override { return inner_->certificate_columns(); }
+  void certificate_values(std::vector<double>& row) const override { inner_->certificate_values(row); }
 
   const Controller& inner() const { return *inner_; }
   const ErrorFormPlant& error_form() const { return *error_form_; }

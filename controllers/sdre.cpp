@@ -44,6 +44,7 @@ SdreController::SdreController(const SdcPlant& model, SdreSettings settings)
   newton_.emplace(settings_.Q, settings_.R, settings_.newton_tolerance, settings_.newton_max_iterations,
                   StabilityProof::lyapunov);
   cold_.emplace(settings_.Q, settings_.R, CareMethod::automatic, StabilityProof::lyapunov);
+  if (settings_.certificates) certificates_.emplace(settings_.Q, settings_.R);
 
   F_.setZero(n, n);
   B_.setZero(n, m);
@@ -119,6 +120,8 @@ void SdreController::control(double t, const Eigen::Ref<const Eigen::VectorXd>& 
   } while (last_iterations_ < passes && last_input_change_ >= settings_.fixed_point_tolerance);
   applied_ = guess_;
   u = applied_;
+  // At the F, B the last pass solved with (docs/model.md §8.4).
+  if (certificates_) certificates_->evaluate(F_, B_);
 }
 
 Eigen::MatrixXd SdreController::value_matrix(const Eigen::VectorXd& x, const Eigen::VectorXd& input, double) const {
@@ -130,10 +133,18 @@ std::vector<std::pair<std::string, double>> SdreController::counters() const {
   return {{"care_newton_fallbacks", fallback_count_}, {"care_failures", failure_count_}};
 }
 
+std::vector<CertificateColumn> SdreController::certificate_columns() const {
+  return certificates_ ? SdreCertificates::columns() : std::vector<CertificateColumn>{};
+}
+
+void SdreController::certificate_values(std::vector<double>& row) const {
+  if (certificates_) certificates_->values(row);
+}
+
 namespace {
 
 std::unique_ptr<Controller> make_sdre(const Settings& fields, const ControllerContext& context) {
-  fields.allow_only({"mode", "fixed_point_iterations", "Q", "R", "feedforward"});
+  fields.allow_only({"mode", "fixed_point_iterations", "Q", "R", "feedforward", "certificates"});
   SdreSettings settings;
   settings.mode = fields.choice("mode", "warm", {"cold", "warm"}) == "warm" ? SdreSettings::Mode::warm
                                                                              : SdreSettings::Mode::cold;
@@ -144,6 +155,7 @@ std::unique_ptr<Controller> make_sdre(const Settings& fields, const ControllerCo
   const DesignDefaults& defaults = context.defaults;
   settings.Q = fields.diagonal_weight("Q", defaults.state_weights, Settings::Weight::positive_semidefinite);
   settings.R = fields.diagonal_weight("R", defaults.input_weights, Settings::Weight::positive_definite);
+  settings.certificates = fields.boolean("certificates", false);
   const FeedForward feedforward = read_feedforward(fields, FeedForward::none);
   // With the trim's input applied, the decision variable v = u − u_r starts from 0.
   settings.initial_input =
@@ -157,7 +169,7 @@ std::unique_ptr<Controller> make_sdre(const Settings& fields, const ControllerCo
 
 const ControllerRegistration registration(
     "sdre", "state-dependent Riccati equation, one CARE per sample (Eq. 37); settings: mode (cold|warm), "
-            "fixed_point_iterations, Q, R, feedforward (none|velocity|velocity+trim)",
+            "fixed_point_iterations, Q, R, feedforward (none|velocity|velocity+trim), certificates (off|on)",
     make_sdre);
 
 }  // namespace

@@ -21,6 +21,7 @@
 #include <Eigen/Core>
 
 #include "controllers/controller.hpp"
+#include "controllers/sdre_certificates.hpp"
 #include "core/riccati.hpp"
 #include "core/sdc_plant.hpp"
 
@@ -48,6 +49,9 @@ struct SdreSettings {
   // and its step limit.
   double newton_tolerance = 1e-12;
   int newton_max_iterations = 20;
+  // Log the CARE's condition and forward-error estimates and the stabilizability margin of (F, B)
+  // at every sample (SdreCertificates, docs/model.md §8.4): one more cold solve per step.
+  bool certificates = false;
 };
 
 class SdreController final : public Controller {
@@ -78,6 +82,9 @@ class SdreController final : public Controller {
   int failure_count() const { return failure_count_; }
   // {"care_newton_fallbacks", fallback_count()}, {"care_failures", failure_count()}.
   std::vector<std::pair<std::string, double>> counters() const override;
+  // SdreCertificates' columns when settings().certificates, else none.
+  std::vector<CertificateColumn> certificate_columns() const override;
+  void certificate_values(std::vector<double>& row) const override;
 
   // P of the last pass of the last control() (the last good one after a failure).
   const Eigen::MatrixXd& last_value_matrix() const { return P_; }
@@ -95,6 +102,7 @@ class SdreController final : public Controller {
   Eigen::MatrixXd R_inverse_;
   std::optional<NewtonKleinmanSolver> newton_;  // the warm mode's, set in the constructor
   std::optional<CareSolver> cold_;              // both modes', set in the constructor
+  std::optional<SdreCertificates> certificates_;  // with settings_.certificates
 
   // Per-step buffers, sized in the constructor.
   Eigen::MatrixXd F_, B_, P_;

@@ -43,10 +43,11 @@ Eigen::VectorXd series_parameter(const char* what, const Eigen::VectorXd& given,
 const ControllerRegistration registration(
     "theta-d",
     "theta-D series T0 + ... + T_{N-1} around the initial state (docs/model.md §7, §8.1); settings: terms, k, l, "
-    "fixed_point_iterations, fixed_point_tolerance, Q, R, feedforward (none|velocity|velocity+trim)",
+    "fixed_point_iterations, fixed_point_tolerance, Q, R, feedforward (none|velocity|velocity+trim), "
+    "certificates (off|on)",
     [](const Settings& settings, const ControllerContext& context) -> std::unique_ptr<Controller> {
       settings.allow_only({theta_d_keys::terms, theta_d_keys::k, theta_d_keys::l, "fixed_point_iterations",
-                           "fixed_point_tolerance", "Q", "R", "feedforward"});
+                           "fixed_point_tolerance", "Q", "R", "feedforward", "certificates"});
       const DesignDefaults& defaults = context.defaults;
       ThetaDSettings s;
       // Bounded: each term is one more Lyapunov solve per pass and two more settings entries, so a
@@ -59,6 +60,7 @@ const ControllerRegistration registration(
       s.fixed_point_tolerance = settings.number("fixed_point_tolerance", s.fixed_point_tolerance, 0.0);
       s.Q = settings.diagonal_weight("Q", defaults.state_weights, Settings::Weight::positive_semidefinite);
       s.R = settings.diagonal_weight("R", defaults.input_weights, Settings::Weight::positive_definite);
+      s.certificates = settings.boolean("certificates", false);
       const FeedForward feedforward = read_feedforward(settings, FeedForward::none);
       // With the trim's input applied, the decision variable v = u − u_r starts from 0.
       s.initial_input = feedforward == FeedForward::velocity_trim ? Eigen::VectorXd::Zero(defaults.input.size())
@@ -131,9 +133,23 @@ ThetaDController::ThetaDController(const SdcPlant& model, ThetaDSettings setting
   guess_.resize(m);
   update_.resize(m);
   applied_ = settings_.initial_input;
+  if (settings_.certificates) {
+    last_term_gradient_.resize(n);
+    last_term_input_.resize(m);
+    weighted_input_.resize(m);
+  }
 }
 
 std::unique_ptr<Controller> ThetaDController::clone() const { return std::make_unique<ThetaDController>(*this); }
+
+std::vector<CertificateColumn> ThetaDController::certificate_columns() const {
+  if (!settings_.certificates) return {};
+  return {{{"last_term_ratio", ""}, CertificateColumn::Worst::largest}};
+}
+
+void ThetaDController::certificate_values(std::vector<double>& row) const {
+  if (settings_.certificates) row.push_back(last_term_ratio_);
+}
 
 void ThetaDController::reset(const Eigen::VectorXd& x0, double t0) {
   const Eigen::Index n = model_->state_dim();

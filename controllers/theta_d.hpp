@@ -54,6 +54,9 @@ struct ThetaDSettings {
   // (n = 18, m = 5); false takes the dynamic-size path that serves every other plant. The same
   // arithmetic either way (a test compares the two); only the speed differs.
   bool fixed_size = true;
+  // Log the last term's share of u at every sample (docs/model.md §8.4): ‖u_{N−1}‖_R / ‖u‖_R with
+  // u_{N−1} = −R⁻¹ Bᵀ T_{N−1} V_track the last term's part of Eq. (35) and ‖u‖_R = √(uᵀ R u).
+  bool certificates = false;
 };
 
 class ThetaDController final : public Controller {
@@ -97,6 +100,11 @@ class ThetaDController final : public Controller {
   double last_input_change() const { return last_input_change_; }
   const ThetaDSettings& settings() const { return settings_; }
 
+  // With settings().certificates, the column last_term_ratio (largest is worst) and its value for
+  // the last control(): 1 for N = 1 (T0 is the last term), NaN when u = 0.
+  std::vector<CertificateColumn> certificate_columns() const override;
+  void certificate_values(std::vector<double>& row) const override;
+
  private:
   void require_reset(const char* caller) const;
   // How much of the last term T_{N−1} a pass forms: all of it, into T_[N−1] (value_matrix); only
@@ -132,6 +140,13 @@ class ThetaDController final : public Controller {
   // The fixed-point passes of control() on v_, from guess_ (docs/model.md §6.2).
   template <int N, int M>
   void run_passes(double t, const Eigen::Ref<const Eigen::VectorXd>& x);
+  // Adds the last term's T v on the input rows, as a pass that formed it partially (`formed`, not
+  // full) left it, to `gradient`.
+  template <int N, class Gradient>
+  void add_partial_last_term(LastTerm formed, Gradient&& gradient) const;
+  // last_term_ratio_ of the pass that just ended, which formed the last term as `formed`.
+  template <int N, int M>
+  void measure_last_term(LastTerm formed);
 
   // The part of reset() that needs T0 and Ac0: the packed Lyapunov inverse in the order below and
   // the solutions T1 for each varying coefficient.
@@ -235,6 +250,9 @@ class ThetaDController final : public Controller {
   Eigen::VectorXd v_, T0_v_, value_gradient_, Bt_gradient_, guess_, update_, applied_;
   int last_iterations_ = 0;
   double last_input_change_ = 0.0;
+  // With settings_.certificates: T_{N−1} v (where B reads it), its part of u, R times a vector.
+  Eigen::VectorXd last_term_gradient_, last_term_input_, weighted_input_;
+  double last_term_ratio_ = 0.0;
 };
 
 }  // namespace thetad

@@ -303,29 +303,57 @@ void ThetaDController::run_passes(double t, const Eigen::Ref<const Eigen::Vector
             supported_projections_[s];
   }
   auto value_gradient = view<N>(value_gradient_);
+  LastTerm formed = LastTerm::full;
   for (last_iterations_ = 1;; ++last_iterations_) {
-    const LastTerm formed = evaluate_series<N, M>(x, guess_, t, wanted, last_iterations_ > 1);
+    formed = evaluate_series<N, M>(x, guess_, t, wanted, last_iterations_ > 1);
     // Eq. (35): u = −R⁻¹ Bᵀ(x) (Σ T_i) V_track.
     const std::size_t full_terms = formed == LastTerm::full ? T_.size() : T_.size() - 1;
     value_gradient = view<N>(T0_v_);
     for (std::size_t i = 1; i < full_terms; ++i) value_gradient.noalias() += view<N, N>(T_[i]) * v;
-    // The last term on the input rows only: the rows of B(x) outside them are zero, so the
-    // partial sums this leaves in the other entries of the gradient are multiplied by zero.
-    if (formed == LastTerm::input_rows)
-      for (Eigen::Index a = 0; a < input_row_unknowns_; ++a) {
-        const Eigen::Index i = unknown_row_[a], j = unknown_col_[a];
-        value_gradient[i] += packed_term_[a] * v[j];
-        if (i != j) value_gradient[j] += packed_term_[a] * v[i];
-      }
-    if (formed == LastTerm::input_row_products)
-      for (std::size_t k = 0; k < input_rows_.size(); ++k)
-        value_gradient[input_rows_[k]] += last_products_[static_cast<Eigen::Index>(k)];
+    add_partial_last_term<N>(formed, value_gradient);
     view<M>(Bt_gradient_).noalias() = view<N, M>(B_).transpose() * value_gradient;
     view<M>(update_).noalias() = -view<M, M>(R_inverse_) * view<M>(Bt_gradient_);
     last_input_change_ = (update_ - guess_).cwiseAbs().maxCoeff();
     guess_ = update_;
     if (last_iterations_ >= passes || last_input_change_ < settings_.fixed_point_tolerance) break;
   }
+  if (settings_.certificates) measure_last_term<N, M>(formed);
+}
+
+template <int N, class Gradient>
+void ThetaDController::add_partial_last_term(LastTerm formed, Gradient&& gradient) const {
+  const auto v = view<N>(v_);
+  // The last term on the input rows only: the rows of B(x) outside them are zero, so the
+  // partial sums this leaves in the other entries of the gradient are multiplied by zero.
+  if (formed == LastTerm::input_rows)
+    for (Eigen::Index a = 0; a < input_row_unknowns_; ++a) {
+      const Eigen::Index i = unknown_row_[a], j = unknown_col_[a];
+      gradient[i] += packed_term_[a] * v[j];
+      if (i != j) gradient[j] += packed_term_[a] * v[i];
+    }
+  if (formed == LastTerm::input_row_products)
+    for (std::size_t k = 0; k < input_rows_.size(); ++k)
+      gradient[input_rows_[k]] += last_products_[static_cast<Eigen::Index>(k)];
+}
+
+template <int N, int M>
+void ThetaDController::measure_last_term(LastTerm formed) {
+  auto gradient = view<N>(last_term_gradient_);
+  if (formed == LastTerm::full) {
+    gradient.noalias() = view<N, N>(T_.back()) * view<N>(v_);
+  } else {
+    gradient.setZero();
+    add_partial_last_term<N>(formed, gradient);
+  }
+  // u_{N−1} = −R⁻¹ Bᵀ T_{N−1} v, as u is formed from the whole sum (Eq. 35).
+  view<M>(Bt_gradient_).noalias() = view<N, M>(B_).transpose() * gradient;
+  auto last_input = view<M>(last_term_input_);
+  last_input.noalias() = -view<M, M>(R_inverse_) * view<M>(Bt_gradient_);
+  auto weighted = view<M>(weighted_input_);
+  weighted.noalias() = view<M, M>(settings_.R) * last_input;
+  const double last_norm = last_input.dot(weighted);
+  weighted.noalias() = view<M, M>(settings_.R) * view<M>(guess_);
+  last_term_ratio_ = std::sqrt(last_norm / view<M>(guess_).dot(weighted));
 }
 
 }  // namespace thetad

@@ -6,6 +6,8 @@
 
 #include <Eigen/Core>
 
+#include "core/certificate_column.hpp"
+
 namespace thetad {
 
 // The position integrals of V_track (Eq. 36) are accumulated by one rule, on both sides of the
@@ -80,6 +82,13 @@ class ControlLaw {
   // figures, e.g. the SDRE's CARE failures that fell back to the last good solution. A law that
   // has nothing to report keeps this default (none).
   virtual std::vector<std::pair<std::string, double>> counters() const { return {}; }
+
+  // Certificates of its own answer that the law logs at every sample (docs/model.md §8.4): their
+  // columns, fixed from construction on, and their values for the last control(), appended to
+  // `row` in that order. certificate_values() is on the hot path: `row` has the capacity, nothing
+  // may allocate. A law that reports none keeps these defaults, and its log has no such columns.
+  virtual std::vector<CertificateColumn> certificate_columns() const { return {}; }
+  virtual void certificate_values(std::vector<double>& row) const { (void)row; }
 };
 
 // Applies a fixed input whatever the state: open-loop runs and tests.

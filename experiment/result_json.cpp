@@ -1,5 +1,6 @@
 #include "experiment/result_json.hpp"
 
+#include <cmath>
 #include <string_view>
 
 #include "core/error.hpp"
@@ -55,6 +56,25 @@ Json settings_json(const sim::SimulationSettings& s) {
   return j;
 }
 
+// A certificate's worst value: a number, "inf" (the stabilizability margin of a pair with nothing
+// to stabilize) or null (no sample had a value), which JSON numbers cannot tell apart.
+Json certificate_value(double value) {
+  if (std::isinf(value)) return value > 0.0 ? "inf" : "-inf";
+  return std::isnan(value) ? Json(nullptr) : Json(value);
+}
+
+// The worst value of each of the controller's certificates and when (docs/model.md §8.4).
+Json certificates_json(const std::vector<CertificateWorst>& certificates) {
+  Json j = Json::object();
+  for (const CertificateWorst& worst : certificates) {
+    const bool largest = worst.certificate.worst == CertificateColumn::Worst::largest;
+    j[worst.certificate.column.header()] = {{"worst", largest ? "largest" : "smallest"},
+                                            {"value", certificate_value(worst.value)},
+                                            {"t_s", std::isnan(worst.t) ? Json(nullptr) : Json(worst.t)}};
+  }
+  return j;
+}
+
 }  // namespace
 
 std::string tracking_error_key(const sim::RunSummary& summary) {
@@ -105,6 +125,7 @@ Json summary_json(const sim::RunSummary& summary) {
   Json counters = Json::object();
   for (const auto& [name, count] : summary.controller_counters) counters[name] = count;
   j["controller_counters"] = counters;
+  if (!summary.certificates.empty()) j["certificates"] = certificates_json(summary.certificates);
   j["settings"] = settings_json(summary.settings);
   Json axes = Json::array();
   for (const auto& tracked : summary.tracked) axes.push_back(tracked.axis);

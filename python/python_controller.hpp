@@ -54,6 +54,8 @@ class BorrowedController final : public Controller {
     target_->control(t, measured_state, reference, u);
   }
   std::vector<std::pair<std::string, double>> counters() const override { return target_->counters(); }
+  std::vector<CertificateColumn> certificate_columns() const override { return target_->certificate_columns(); }
+  void certificate_values(std::vector<double>& row) const override { target_->certificate_values(row); }
   std::unique_ptr<Controller> clone() const override { return target_->clone(); }
 
  private:
@@ -76,6 +78,10 @@ class RegisteredController final : public Controller {
     prepared_.controller->control(t, measured_state, reference, u);
   }
   std::vector<std::pair<std::string, double>> counters() const override { return prepared_.controller->counters(); }
+  std::vector<CertificateColumn> certificate_columns() const override {
+    return prepared_.controller->certificate_columns();
+  }
+  void certificate_values(std::vector<double>& row) const override { prepared_.controller->certificate_values(row); }
   std::unique_ptr<Controller> clone() const override;
 
  private:

@@ -8,6 +8,7 @@
 #include "core/error.hpp"
 #include "core/sim/rk4.hpp"
 #include "core/sim/run_metrics.hpp"
+#include "core/sim/worst_certificates.hpp"
 
 namespace thetad::sim {
 
@@ -59,11 +60,23 @@ void tracking_error(const std::vector<TrackedState>& tracked, const Eigen::Vecto
   }
 }
 
+// The certificates of the law's last step into `values`, one per column (checked: a plug-in's
+// miscount would shift the log's columns), and into the run's worst.
+void take_certificates(const ControlLaw& law, double t, std::size_t columns, std::vector<double>& values,
+                       WorstCertificates& worst) {
+  values.clear();
+  law.certificate_values(values);
+  if (values.size() != columns)
+    throw Error("certificate_values gave " + std::to_string(values.size()) + " values for " +
+                std::to_string(columns) + " certificate columns");
+  worst.add(t, values);
+}
+
 // One log row, in the order of log_schema().
 void append_row(double t, const std::vector<TrackedState>& tracked, const Eigen::Vector3d& command_position,
                 const Eigen::VectorXd& x, const Eigen::VectorXd& measured, const Eigen::VectorXd& command,
-                const Eigen::VectorXd& applied, const Disturbances& disturbances, std::int64_t compute_ns,
-                RunLog& log) {
+                const Eigen::VectorXd& applied, const Disturbances& disturbances,
+                const std::vector<double>& certificates, std::int64_t compute_ns, RunLog& log) {
   auto& row = log.values;
   row.push_back(t);
   row.insert(row.end(), command_position.begin(), command_position.begin() + static_cast<Eigen::Index>(tracked.size()));
@@ -72,12 +85,14 @@ void append_row(double t, const std::vector<TrackedState>& tracked, const Eigen:
   row.insert(row.end(), command.begin(), command.end());
   row.insert(row.end(), applied.begin(), applied.end());
   disturbances.log_values(row);
+  row.insert(row.end(), certificates.begin(), certificates.end());
   row.push_back(static_cast<double>(compute_ns));
 }
 
 }  // namespace
 
-std::vector<LogColumn> log_schema(const SdcPlant& plant, const Disturbances& disturbances) {
+std::vector<LogColumn> log_schema(const SdcPlant& plant, const Disturbances& disturbances,
+                                  const std::vector<CertificateColumn>& certificates) {
   std::vector<LogColumn> columns{{"t", "s"}};
   for (const auto& tracked : plant.tracked_states()) columns.push_back(tracked.command);
   const std::vector<LogColumn> states = plant.state_columns(), inputs = plant.input_columns();
@@ -86,6 +101,7 @@ std::vector<LogColumn> log_schema(const SdcPlant& plant, const Disturbances& dis
   for (const auto& [name, unit] : inputs) columns.push_back({"cmd_" + name, unit});
   for (const auto& [name, unit] : inputs) columns.push_back({"app_" + name, unit});
   for (auto& column : disturbances.log_columns()) columns.push_back(std::move(column));
+  for (const auto& certificate : certificates) columns.push_back(certificate.column);
   columns.push_back(step_time_column());
   return columns;
 }
@@ -103,7 +119,8 @@ RunResult simulate(ControlLaw& law, Disturbances& disturbances, const ReferenceT
   if (tracked.size() > 3) throw Error("simulate: a plant tracks at most three states (the reference's position)");
 
   RunResult result;
-  result.log.columns = log_schema(plant, disturbances);
+  const std::vector<CertificateColumn> certificate_columns = law.certificate_columns();
+  result.log.columns = log_schema(plant, disturbances, certificate_columns);
   settings.check_memory(result.log.columns.size());
   const double period = settings.controller_period();
   const std::int64_t samples = settings.samples();
@@ -126,6 +143,9 @@ RunResult simulate(ControlLaw& law, Disturbances& disturbances, const ReferenceT
   Eigen::Vector3d padded_error;
   Rk4Workspace workspace(n);
   PositionIntegral reference_integral, true_error_integral;
+  std::vector<double> certificates;
+  certificates.reserve(certificate_columns.size());
+  WorstCertificates worst_certificates(certificate_columns);
 
   std::optional<std::string> failure = disturbances.check(x, 0.0);
   bool controller_failed = false;
@@ -148,6 +168,8 @@ RunResult simulate(ControlLaw& law, Disturbances& disturbances, const ReferenceT
     try {
       elapsed_ns = call_control(law, t, measured, now, command, settings.measure_compute_time);
       if (!command.allFinite()) throw Error("non-finite command");
+      if (!certificate_columns.empty())
+        take_certificates(law, t, certificate_columns.size(), certificates, worst_certificates);
     } catch (const std::exception& error) {
       // Whatever a user's controller throws (a plug-in's own exception types too) ends this run,
       // not the program: the other runs of a comparison go on.
@@ -163,7 +185,8 @@ RunResult simulate(ControlLaw& law, Disturbances& disturbances, const ReferenceT
     metrics.add(error, v, command, elapsed_ns);
     if (deviation) deviation->add(x, now, v, command);
     if (settings.keep_log && k % settings.log_every == 0)
-      append_row(t, tracked, now.position, x, measured, command, applied, disturbances, elapsed_ns, result.log);
+      append_row(t, tracked, now.position, x, measured, command, applied, disturbances, certificates, elapsed_ns,
+                 result.log);
 
     // Anti-windup (ActuatorLimits::anti_windup): held, the command's integral follows the measured
     // position, so that the measured-minus-command integral the controllers see does not move.
@@ -193,6 +216,7 @@ RunResult simulate(ControlLaw& law, Disturbances& disturbances, const ReferenceT
   }
   disturbances.finish(summary);
   summary.controller_counters = law.counters();
+  summary.certificates = worst_certificates.worst();
   return result;
 }
 

@@ -23,9 +23,11 @@ struct RunResult {
 
 // The columns of a run's log on `plant` with `disturbances`, in the order the row writer appends
 // them: t; the commands of the tracked states; the true state; the measured state (meas_); the
-// commanded input (cmd_); the applied input (app_); the disturbances' own columns; the control
-// step's wall time (compute_ns).
-std::vector<LogColumn> log_schema(const SdcPlant& plant, const Disturbances& disturbances);
+// commanded input (cmd_); the applied input (app_); the disturbances' own columns; the
+// controller's certificates (ControlLaw::certificate_columns), if any; the control step's wall
+// time (compute_ns).
+std::vector<LogColumn> log_schema(const SdcPlant& plant, const Disturbances& disturbances,
+                                  const std::vector<CertificateColumn>& certificates = {});
 // The last column of every log: the control step's wall time, which the files of runs flown
 // without timing leave out.
 inline LogColumn step_time_column() { return {"compute", "ns"}; }

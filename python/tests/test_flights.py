@@ -74,6 +74,16 @@ def test_a_registered_controller_object_flies_as_its_spec():
     assert result.label == "tuned" and result.settings["k"] == [0.5, 2.0]
 
 
+def test_certificates_are_log_columns_and_a_summary_section_when_on():
+    checked = thetad.controller("sdre", certificates=True)
+    result = thetad.run("scenario-1", checked, duration=0.05, timing=False)
+    assert result.settings["certificates"] is True
+    worst = result.summary["certificates"]["stabilizability_margin"]
+    column = result.log[:, result.columns.index("stabilizability_margin")]
+    assert worst["worst"] == "smallest" and worst["value"] == column.min() > 0
+    assert "certificates" not in thetad.run("scenario-1", "sdre", duration=0.05, timing=False).summary
+
+
 def test_bad_calls_raise():
     with pytest.raises(thetad.Error, match="scenario 'no-such-scenario'"):
         thetad.run("no-such-scenario", "lqr")

@@ -120,7 +120,9 @@ INSTANTIATE_TEST_SUITE_P(BuiltIn, ControlStepAllocations,
                                            Case{"theta_d_velocity_trim", "theta-d", "{feedforward: velocity+trim}"},
                                            Case{"sdre_warm_velocity", "sdre", "{feedforward: velocity}"},
                                            Case{"lqr_velocity_trim", "lqr", "{feedforward: velocity+trim}"},
-                                           Case{"lqr_scheduled_exact", "lqr-scheduled", "{velocity_source: exact}"}),
+                                           Case{"lqr_scheduled_exact", "lqr-scheduled", "{velocity_source: exact}"},
+                                           Case{"theta_d_certificates", "theta-d", "{certificates: on}"},
+                                           Case{"sdre_warm_certificates", "sdre", "{certificates: on}"}),
                          [](const auto& info) { return std::string(info.param.label); });
 
 }  // namespace

@@ -186,7 +186,8 @@ TEST(ControllerRegistry, TheSettingsAsUsedHoldEveryFieldGivenOrDefault) {
   EXPECT_EQ(theta_d["R"].as<std::vector<double>>(),
             std::vector<double>(defaults.input_weights.begin(), defaults.input_weights.end()));
   EXPECT_EQ(theta_d["feedforward"].as<std::string>(), "none");
-  EXPECT_EQ(theta_d.size(), 8u);
+  EXPECT_FALSE(theta_d["certificates"].as<bool>());
+  EXPECT_EQ(theta_d.size(), 9u);
 
   const YAML::Node scheduled =
       registry.build("lqr-scheduled", YAML::Load("grid: {speeds: [0, 2], courses_deg: [90]}"), hover_context(model))
