@@ -22,23 +22,27 @@ void FlightObserver::observe(const std::string& label, double t) {
   if (now - last_check_ < kSignalPeriod) return;
   last_check_ = now;
   py::gil_scoped_acquire locked;
-  if (PyErr_CheckSignals() != 0) {
-    if (PyErr_ExceptionMatches(PyExc_KeyboardInterrupt)) {
-      char message[200];
-      std::snprintf(message, sizeof message, "flight '%s' stopped at t = %.2f s of %.2f s simulated; no result",
-                    label.c_str(), t, duration_);
-      PyErr_Clear();
-      PyErr_SetString(PyExc_KeyboardInterrupt, message);
-    }
-    throw py::error_already_set();
-  }
+  raise_pending_signal(label, t);
   if (!progress_.is_none() && now - last_report_ >= kProgressPeriod) {
     last_report_ = now;
     progress_(t, duration_);
   }
 }
 
-void FlightObserver::finished(double end) {
+void FlightObserver::raise_pending_signal(const std::string& label, double t) const {
+  if (PyErr_CheckSignals() == 0) return;
+  if (PyErr_ExceptionMatches(PyExc_KeyboardInterrupt)) {
+    char message[200];
+    std::snprintf(message, sizeof message, "flight '%s' stopped at t = %.2f s of %.2f s simulated; no result",
+                  label.c_str(), t, duration_);
+    PyErr_Clear();
+    PyErr_SetString(PyExc_KeyboardInterrupt, message);
+  }
+  throw py::error_already_set();
+}
+
+void FlightObserver::finished(const std::string& label, double end) {
+  raise_pending_signal(label, end);
   if (!progress_.is_none()) progress_(end, duration_);
 }
 

@@ -27,8 +27,10 @@ class FlightObserver {
   // raises ends the flight the same way.
   std::function<void(double t)> hook(const std::string& label, double duration);
 
-  // progress(end, duration) once a flight has ended at `end`, so that a display reaches its end.
-  void finished(double end);
+  // Once the flight `label` has ended at `end`, with the GIL held: raises the KeyboardInterrupt of
+  // a Ctrl-C that came during it (a Python controller's code may have received it, and the run then
+  // ended as failed), else calls progress(end, duration), so that a display reaches its end.
+  void finished(const std::string& label, double end);
 
  private:
   using Clock = std::chrono::steady_clock;
@@ -36,6 +38,9 @@ class FlightObserver {
   static constexpr std::chrono::milliseconds kProgressPeriod{100};
 
   void observe(const std::string& label, double t);
+  // Throws py::error_already_set when a signal handler raised: a KeyboardInterrupt that says where
+  // the flight `label` stopped, or whatever else the handler raised.
+  void raise_pending_signal(const std::string& label, double t) const;
 
   py::object progress_;
   double duration_ = 0.0;

@@ -156,7 +156,7 @@ void bind_flights(py::module_& module) {
           prepared = prepare(flight, entry);
           result = flight.fly(prepared, nullptr, {}, observer.hook(spec_of(entry).label, flight.settings().duration));
         }
-        observer.finished(result.summary.end_time);
+        observer.finished(result.spec.label, result.summary.end_time);
         return result;
       },
       py::arg("scenario"), py::arg("controller"), py::kw_only(), py::arg("label") = py::none(),
@@ -188,7 +188,7 @@ void bind_flights(py::module_& module) {
           const auto observe = observer.hook(controller.spec.label, flight.settings().duration);
           results.push_back(flight.fly(controller, nullptr, {}, observe));
           py::gil_scoped_acquire locked;
-          observer.finished(results.back().summary.end_time);
+          observer.finished(controller.spec.label, results.back().summary.end_time);
         }
         return results;
       },

@@ -14,25 +14,40 @@ import pytest
 import thetad
 
 # A flight far longer than the test: only Ctrl-C ends it. It would write its result into `folder`
-# once flown; interrupted, nothing may be there.
+# once flown; interrupted, nothing may be there. With "python", the controller is a Python class
+# (around theta-d), whose own code then usually receives the Ctrl-C.
 CHILD = textwrap.dedent("""
     import sys, time
     import thetad
-    folder = sys.argv[1]
-    thetad.run("scenario-1", "theta-d", duration=0.1, summary_only=True, timing=False)  # warm
+
+    class Wrapped(thetad.Controller):
+        def __init__(self):
+            super().__init__()
+            self.inner = thetad.controller("theta-d")
+
+        def reset(self, x0, t0):
+            self.inner.reset(x0, t0)
+
+        def compute(self, t, x, reference):
+            return self.inner.compute(t, x, reference)
+
+    folder, kind = sys.argv[1:]
+    controller = Wrapped() if kind == "python" else "theta-d"
+    thetad.run("scenario-1", controller, duration=0.1, summary_only=True, timing=False)  # warm
     print("flying", flush=True)
     try:
-        thetad.run("scenario-1", "theta-d", duration=3600.0, summary_only=True, timing=False).write(folder)
+        thetad.run("scenario-1", controller, duration=3600.0, summary_only=True, timing=False).write(folder)
         print("completed", flush=True)
     except KeyboardInterrupt as stop:
         print("interrupted", time.monotonic(), stop, flush=True)
 """)
 
 
-def test_ctrl_c_stops_a_flight_within_a_second(tmp_path):
+@pytest.mark.parametrize("kind", ["c++", "python"])
+def test_ctrl_c_stops_a_flight_within_a_second(tmp_path, kind):
     folder = tmp_path / "out"
     folder.mkdir()
-    child = subprocess.Popen([sys.executable, "-c", CHILD, str(folder)], stdout=subprocess.PIPE, text=True,
+    child = subprocess.Popen([sys.executable, "-c", CHILD, str(folder), kind], stdout=subprocess.PIPE, text=True,
                              env=dict(os.environ))
     try:
         assert child.stdout.readline().strip() == "flying"
@@ -45,7 +60,7 @@ def test_ctrl_c_stops_a_flight_within_a_second(tmp_path):
         child.kill()
     assert line[0] == "interrupted", line
     assert float(line[1]) - sent < 1.0, f"KeyboardInterrupt {float(line[1]) - sent:.2f} s after SIGINT"
-    assert "flight 'theta-d' stopped at t = " in line[2] and "no result" in line[2]
+    assert "stopped at t = " in line[2] and "no result" in line[2]
     assert list(folder.iterdir()) == []
 
 
