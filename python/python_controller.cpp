@@ -54,9 +54,9 @@ void PythonController::reset(const Eigen::VectorXd& x0, double t0) {
 void PythonController::control(double t, const Eigen::Ref<const Eigen::VectorXd>& measured_state,
                                const Reference& reference, Eigen::Ref<Eigen::VectorXd> u) {
   py::gil_scoped_acquire gil;
-  const py::function compute = py::get_override(static_cast<const Controller*>(this), "compute");
-  if (!compute) throw Error(class_name() + " does not define compute(self, t, x, reference)");
-  try {
+  try {  // the look-up too: a Ctrl-C can be raised there
+    const py::function compute = py::get_override(static_cast<const Controller*>(this), "compute");
+    if (!compute) throw Error(class_name() + " does not define compute(self, t, x, reference)");
     const py::object result = compute(t, py::array(measured_state.size(), measured_state.data()), reference);
     u = VectorArgument(result, class_name() + ".compute returned u", u.size()).vector();
   } catch (const py::error_already_set& error) {
