@@ -1,5 +1,6 @@
 #include "core/care_diagnosis.hpp"
 
+#include <algorithm>
 #include <complex>
 #include <limits>
 
@@ -23,9 +24,9 @@ Eigen::MatrixXd scaled_to(const Eigen::Ref<const Eigen::MatrixXd>& M, double sca
 
 }  // namespace
 
-std::string broken_care_precondition(const Eigen::Ref<const Eigen::MatrixXd>& A,
-                                     const Eigen::Ref<const Eigen::MatrixXd>& B_given,
-                                     const Eigen::Ref<const Eigen::MatrixXd>& Q_given) {
+std::string broken_riccati_precondition(const Eigen::Ref<const Eigen::MatrixXd>& A,
+                                        const Eigen::Ref<const Eigen::MatrixXd>& B_given,
+                                        const Eigen::Ref<const Eigen::MatrixXd>& Q_given, TimeDomain domain) {
   const Eigen::Index n = A.rows();
   // Stabilizability of (A, B) and detectability of (Q, A) do not change when B or Q is multiplied
   // by a positive number, but σ_min[A − λI, B] and σ_min[A − λI; Q] do: with B and Q scaled to
@@ -39,10 +40,16 @@ std::string broken_care_precondition(const Eigen::Ref<const Eigen::MatrixXd>& A,
   const auto smallest_singular_value = [](const Eigen::MatrixXcd& M) {
     return Eigen::JacobiSVD<Eigen::MatrixXcd>(M).singularValues().minCoeff();
   };
+  // The distance outside the stable region: Re λ, or |λ| − 1. On the unit circle the rounding of
+  // an eigenvalue is relative to max(1, ‖A‖_F) rather than to ‖A‖_F: |λ| = 1 is a fixed radius.
+  const bool continuous = domain == TimeDomain::continuous;
+  const double boundary_tolerance = continuous ? tolerance : tolerance / scale * std::max(1.0, scale);
+  const auto outside = [&](std::complex<double> lambda) { return continuous ? lambda.real() : std::abs(lambda) - 1.0; };
+  const char* const boundary = continuous ? "the imaginary axis" : "the unit circle";
   for (const std::complex<double> lambda : modes) {
     const Eigen::MatrixXcd shifted = A.cast<std::complex<double>>() - lambda * Eigen::MatrixXcd::Identity(n, n);
     const std::string mode = "λ = " + num(lambda.real()) + (lambda.imag() >= 0 ? "+" : "") + num(lambda.imag()) + "i";
-    if (lambda.real() >= -tolerance) {
+    if (outside(lambda) >= -boundary_tolerance) {
       Eigen::MatrixXcd reach(n, n + B.cols());
       reach << shifted, B.cast<std::complex<double>>();
       const double sigma = smallest_singular_value(reach);
@@ -50,16 +57,22 @@ std::string broken_care_precondition(const Eigen::Ref<const Eigen::MatrixXd>& A,
         return "the pair (A, B) is not stabilizable: the mode " + mode + " of A is not controllable (σ_min[A − λI, B] = " +
                num(sigma) + ", B scaled to ‖A‖_F)";
     }
-    if (std::abs(lambda.real()) <= tolerance) {
+    if (std::abs(outside(lambda)) <= boundary_tolerance) {
       Eigen::MatrixXcd see(2 * n, n);
       see << shifted, Q.cast<std::complex<double>>();
       const double sigma = smallest_singular_value(see);
       if (sigma <= tolerance)
-        return "(Q, A) is not detectable: the mode " + mode + " of A on the imaginary axis is not seen by Q "
+        return "(Q, A) is not detectable: the mode " + mode + " of A on " + boundary + " is not seen by Q "
                "(σ_min[A − λI; Q] = " + num(sigma) + ", Q scaled to ‖A‖_F)";
     }
   }
   return {};
+}
+
+std::string broken_care_precondition(const Eigen::Ref<const Eigen::MatrixXd>& A,
+                                     const Eigen::Ref<const Eigen::MatrixXd>& B,
+                                     const Eigen::Ref<const Eigen::MatrixXd>& Q) {
+  return broken_riccati_precondition(A, B, Q, TimeDomain::continuous);
 }
 
 void rethrow_with_diagnosis(const Error& error, const Eigen::Ref<const Eigen::MatrixXd>& A,

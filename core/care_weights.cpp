@@ -16,14 +16,6 @@ using Eigen::MatrixXd;
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 
-// Relative to the matrix itself: weights that differ by 1e7 within one matrix are normal here.
-void check_symmetric(const char* name, const MatrixRef& M) {
-  const double asymmetry = frobenius_norm(M - M.transpose());
-  if (asymmetry > 1e-10 * frobenius_norm(M))
-    fail(std::string(name) + " is not symmetric (‖" + name + " − " + name + "'‖_F = " + num(asymmetry) +
-         ", ‖" + name + "‖_F = " + num(frobenius_norm(M)) + ")");
-}
-
 // Smallest and largest eigenvalue of a symmetric matrix. Weights are usually diagonal: a diagonal
 // needs no eigensolver.
 std::pair<double, double> spectrum_range(const MatrixXd& M) {
@@ -42,23 +34,48 @@ std::string num(double value) {
 
 std::string shape(const MatrixRef& M) { return std::to_string(M.rows()) + "x" + std::to_string(M.cols()); }
 
-void fail(const std::string& what) { throw Error("CARE: " + what); }
+void fail(const std::string& what) { fail("CARE", what); }
+
+void fail(const char* equation, const std::string& what) { throw Error(std::string(equation) + ": " + what); }
+
+void check_symmetric(const char* name, const MatrixRef& M, const char* equation) {
+  const double asymmetry = frobenius_norm(M - M.transpose());
+  if (asymmetry > 1e-10 * frobenius_norm(M))
+    fail(equation, std::string(name) + " is not symmetric (‖" + name + " − " + name + "'‖_F = " + num(asymmetry) +
+                       ", ‖" + name + "‖_F = " + num(frobenius_norm(M)) + ")");
+}
 
 const char* const kStabilizabilityHint =
     "; the pair (A, B) may not be stabilizable or (Q, A) may have an unobservable mode on the "
     "imaginary axis (not detectable)";
 
-void check_inputs(const MatrixRef& A, const MatrixRef& B, const MatrixRef& Q, const MatrixRef& R) {
+void check_inputs(const MatrixRef& A, const MatrixRef& B, const MatrixRef& Q, const MatrixRef& R, const char* equation) {
   const Index n = A.rows();
-  if (n == 0 || A.cols() != n) fail("A must be square and non-empty, but A is " + shape(A));
-  if (B.rows() != n) fail("B is " + shape(B) + " but A is " + shape(A) + " (B needs " + std::to_string(n) + " rows)");
-  if (B.cols() == 0) fail("B has no columns");
-  if (Q.rows() != n || Q.cols() != n) fail("Q is " + shape(Q) + " but A is " + shape(A));
+  if (n == 0 || A.cols() != n) fail(equation, "A must be square and non-empty, but A is " + shape(A));
+  if (B.rows() != n)
+    fail(equation, "B is " + shape(B) + " but A is " + shape(A) + " (B needs " + std::to_string(n) + " rows)");
+  if (B.cols() == 0) fail(equation, "B has no columns");
+  if (Q.rows() != n || Q.cols() != n) fail(equation, "Q is " + shape(Q) + " but A is " + shape(A));
   if (R.rows() != B.cols() || R.cols() != B.cols())
-    fail("R is " + shape(R) + " but B has " + std::to_string(B.cols()) + " columns");
+    fail(equation, "R is " + shape(R) + " but B has " + std::to_string(B.cols()) + " columns");
   const std::pair<const char*, const MatrixRef*> all[] = {{"A", &A}, {"B", &B}, {"Q", &Q}, {"R", &R}};
   for (const auto& [name, M] : all)
-    if (!M->allFinite()) fail(std::string(name) + " has a non-finite entry (NaN or Inf)");
+    if (!M->allFinite()) fail(equation, std::string(name) + " has a non-finite entry (NaN or Inf)");
+}
+
+void check_cross_term(const char* name, const MatrixRef& S, const MatrixRef& B, const char* equation) {
+  if (S.rows() != B.rows() || S.cols() != B.cols())
+    fail(equation, std::string(name) + " is " + shape(S) + " but B is " + shape(B) + " (" + name + " needs the shape of B)");
+  if (!S.allFinite()) fail(equation, std::string(name) + " has a non-finite entry (NaN or Inf)");
+}
+
+WithoutCrossTerm eliminate_cross_term(const MatrixRef& A, const MatrixRef& B, const MatrixRef& Q, const MatrixRef& S,
+                                      const Eigen::LDLT<MatrixXd>& R) {
+  WithoutCrossTerm reduced{A, Q, R.solve(S.transpose())};
+  reduced.A.noalias() -= B * reduced.RinvSt;
+  reduced.Q.noalias() -= S * reduced.RinvSt;
+  reduced.Q = 0.5 * (reduced.Q + reduced.Q.transpose()).eval();
+  return reduced;
 }
 
 Weights prepare_weights(const MatrixRef& Q, const MatrixRef& R) {

@@ -2,6 +2,7 @@
 
 // What the CARE solvers (riccati.cpp, newton_kleinman.cpp) share: the checks of their inputs, the
 // weights in the factored form they compute with, the residual, and the wording of their errors.
+// The DARE solver (dare.cpp) shares the checks and the wording.
 
 #include <string>
 
@@ -14,12 +15,19 @@ using MatrixRef = Eigen::Ref<const Eigen::MatrixXd>;
 std::string num(double value);  // %.3g
 std::string shape(const MatrixRef& M);
 [[noreturn]] void fail(const std::string& what);  // thetad::Error("CARE: " + what)
+// thetad::Error(equation + ": " + what), equation "CARE" or "DARE".
+[[noreturn]] void fail(const char* equation, const std::string& what);
 
 // Appended to a failure that may come from a broken precondition the solver cannot name.
 extern const char* const kStabilizabilityHint;
 
 // Sizes match, nothing is empty, every entry is finite; the message names the matrix.
-void check_inputs(const MatrixRef& A, const MatrixRef& B, const MatrixRef& Q, const MatrixRef& R);
+void check_inputs(const MatrixRef& A, const MatrixRef& B, const MatrixRef& Q, const MatrixRef& R,
+                  const char* equation = "CARE");
+// The cross-term weight `name` (S, N) has B's shape and finite entries.
+void check_cross_term(const char* name, const MatrixRef& S, const MatrixRef& B, const char* equation);
+// M = M' to 1e-10 relative to ‖M‖_F: weights that differ by 1e7 within one matrix are normal here.
+void check_symmetric(const char* name, const MatrixRef& M, const char* equation = "CARE");
 
 // G = B R⁻¹ B' kept factored as W'W with W = L⁻¹B' (R = LL'): G·P then costs 2mn² instead of n³,
 // P G P = (WP)'(WP) is exactly symmetric, and K = R⁻¹B'P = L'⁻¹(WP).
@@ -29,6 +37,17 @@ struct Weights {
   Eigen::MatrixXd L;  // lower Cholesky factor of R
   Eigen::MatrixXd W;  // L⁻¹ B', m×n: set by set_input_matrix
 };
+
+// The equation with its cross term S (cost x'Qx + u'Ru + 2x'Su) eliminated: with u = v − R⁻¹S'x the
+// cost is that of Ā = A − BR⁻¹S' and Q̄ = Q − SR⁻¹S', the Riccati solution is the same, and the gain
+// is K̄ + R⁻¹S'. Used by the CARE and the DARE alike; R nonsingular (its LDL' given).
+struct WithoutCrossTerm {
+  Eigen::MatrixXd A;       // Ā
+  Eigen::MatrixXd Q;       // Q̄, symmetrized
+  Eigen::MatrixXd RinvSt;  // R⁻¹S'
+};
+WithoutCrossTerm eliminate_cross_term(const MatrixRef& A, const MatrixRef& B, const MatrixRef& Q, const MatrixRef& S,
+                                      const Eigen::LDLT<Eigen::MatrixXd>& R);
 
 // Q and L once Q is symmetric positive semi-definite and R symmetric positive definite (the
 // message gives the extreme eigenvalues otherwise).

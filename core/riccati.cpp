@@ -316,4 +316,19 @@ CareResult solve_care(const MatrixRef& A, const MatrixRef& B, const MatrixRef& Q
   return CareSolver(Q, R, method, StabilityProof::spectrum, estimates).solve(A, B);
 }
 
+CareResult solve_care(const MatrixRef& A, const MatrixRef& B, const MatrixRef& Q, const MatrixRef& R,
+                      const MatrixRef& N, CareMethod method, ErrorEstimates estimates) {
+  care::check_inputs(A, B, Q, R);
+  care::check_cross_term("N", N, B, "CARE");
+  care::check_symmetric("R", R);
+  const Eigen::LDLT<MatrixXd> R_factored(0.5 * (R + R.transpose()));
+  if (R_factored.info() != Eigen::Success || !R_factored.isPositive() ||
+      !(R_factored.rcond() > static_cast<double>(R.rows()) * kEps))
+    fail("R is not symmetric positive definite (rcond(R) = " + num(R_factored.rcond()) + ")");
+  const care::WithoutCrossTerm reduced = care::eliminate_cross_term(A, B, Q, N, R_factored);
+  CareResult result = solve_care(reduced.A, B, reduced.Q, R, method, estimates);
+  result.K += reduced.RinvSt;
+  return result;
+}
+
 }  // namespace thetad

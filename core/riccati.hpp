@@ -84,4 +84,14 @@ CareResult solve_care(const Eigen::Ref<const Eigen::MatrixXd>& A,
                       CareMethod method = CareMethod::automatic,
                       ErrorEstimates estimates = ErrorEstimates::off);
 
+// With a cross term N (the LQR cost x'Qx + u'Ru + 2x'Nu): the CARE of A − BR⁻¹N' and Q − NR⁻¹N'
+// (care::eliminate_cross_term), which must be positive semi-definite, and K = R⁻¹(B'P + N').
+CareResult solve_care(const Eigen::Ref<const Eigen::MatrixXd>& A,
+                      const Eigen::Ref<const Eigen::MatrixXd>& B,
+                      const Eigen::Ref<const Eigen::MatrixXd>& Q,
+                      const Eigen::Ref<const Eigen::MatrixXd>& R,
+                      const Eigen::Ref<const Eigen::MatrixXd>& N,
+                      CareMethod method = CareMethod::automatic,
+                      ErrorEstimates estimates = ErrorEstimates::off);
+
 }  // namespace thetad

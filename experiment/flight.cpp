@@ -174,7 +174,8 @@ PreparedController Flight::prepare(const ControllerSpec& spec) const {
   return {spec, std::move(built.controller), built.settings, {}};
 }
 
-RunResult Flight::fly(PreparedController& prepared, Progress* progress, const std::string& heading) const {
+RunResult Flight::fly(PreparedController& prepared, Progress* progress, const std::string& heading,
+                      const std::function<void(double t)>& observe) const {
   RunResult result;
   result.spec = prepared.spec;
   result.settings = prepared.settings;
@@ -186,10 +187,13 @@ RunResult Flight::fly(PreparedController& prepared, Progress* progress, const st
   std::optional<sim::DeviationCost> deviation = deviation_cost(no_deviation);
   if (progress) progress->start(heading.empty() ? prepared.spec.label + ":" : heading, settings_.duration);
   const auto start = std::chrono::steady_clock::now();
-  const auto report = [progress](double t) { progress->update(t); };
+  const auto report = [progress, &observe](double t) {
+    if (progress) progress->update(t);
+    if (observe) observe(t);
+  };
   const std::unique_ptr<sim::Disturbances> disturbances = make_disturbances();
   sim::RunResult flown = sim::simulate(*prepared.controller, *disturbances, scenario_.trajectory, initial_state_, settings_,
-                                       progress ? std::function<void(double)>(report) : std::function<void(double)>(),
+                                       progress || observe ? std::function<void(double)>(report) : std::function<void(double)>(),
                                        deviation ? &*deviation : nullptr);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   result.summary = std::move(flown.summary);

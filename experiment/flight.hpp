@@ -1,5 +1,6 @@
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -81,8 +82,12 @@ class Flight {
   PreparedController prepare(const ControllerSpec& spec) const;
 
   // Flies `prepared` through the scenario (it is reset first), showing progress on `progress`
-  // under `heading` ("LABEL:" when empty).
-  RunResult fly(PreparedController& prepared, Progress* progress = nullptr, const std::string& heading = {}) const;
+  // under `heading` ("LABEL:" when empty). `observe`, when given, is called with the simulated time
+  // as often as the progress display (sim::kProgressSamples): a front end's own display, or its
+  // way to stop the flight, by throwing (Python's Ctrl-C): what it throws ends the flight and
+  // propagates out of fly(), with no result.
+  RunResult fly(PreparedController& prepared, Progress* progress = nullptr, const std::string& heading = {},
+                const std::function<void(double t)>& observe = {}) const;
 
   // The score J_dev of one run (docs/model.md §7.2) on the flight's trims, fresh; none, and
   // `why_not` says why, for a plant without trims or a reference beyond them.

@@ -100,14 +100,21 @@ void bind_controllers(py::module_& module) {
       .def(
           "clone", [](const Controller& controller) { return std::shared_ptr<Controller>(controller.clone()); },
           "A copy: independent for a registered controller; for a Python class its own clone() when it defines "
-          "one, else a second handle on the same object (docs/python.md)");
+          "one, else a second handle on the same object (docs/python.md)")
+      .def("__repr__", [](py::handle self) {
+        const std::string type = py::str(py::type::of(self).attr("__qualname__"));
+        return "<" + type + " '" + self.cast<const Controller&>().name() + "'>";
+      });
 
   py::class_<RegisteredController, Controller, std::shared_ptr<RegisteredController>>(
       module, "RegisteredController", "A registered controller built by thetad.controller()")
       .def_property_readonly("label", [](const RegisteredController& c) { return c.spec().label; })
       .def_property_readonly("controller", [](const RegisteredController& c) { return c.spec().controller; })
       .def_property_readonly("settings", [](const RegisteredController& c) { return to_python(yaml_to_json(c.settings())); },
-                             "every setting as used, defaults included");
+                             "every setting as used, defaults included")
+      .def("__repr__", [](const RegisteredController& c) {
+        return "RegisteredController(label='" + c.spec().label + "', controller='" + c.spec().controller + "')";
+      });
 
   module.def(
       "controller",

@@ -11,6 +11,7 @@
 #include "experiment/comparison.hpp"
 #include "experiment/run_files.hpp"
 #include "python/bindings.hpp"
+#include "python/flight_observer.hpp"
 #include "python/python_controller.hpp"
 #include "python/values.hpp"
 
@@ -140,25 +141,35 @@ void bind_flights(py::module_& module) {
 
   module.def(
       "run",
-      [](const std::string& scenario, py::handle controller, std::optional<std::string> label, const py::kwargs& controls) {
+      [](const std::string& scenario, py::handle controller, std::optional<std::string> label, py::object progress,
+         const py::kwargs& controls) {
         const RunControls parsed = run_controls(controls);
         Entry entry = entry_of(controller);
         if (label) spec_of(entry).label = *label;
         check_label(spec_of(entry).label);
         PreparedController prepared;  // released with the GIL held (a Python controller's reference)
-        py::gil_scoped_release unlocked;
-        const Flight flight(scenario, parsed);
-        prepared = prepare(flight, entry);
-        return flight.fly(prepared);
+        FlightObserver observer(std::move(progress));
+        RunResult result;
+        {
+          py::gil_scoped_release unlocked;
+          const Flight flight(scenario, parsed);
+          prepared = prepare(flight, entry);
+          result = flight.fly(prepared, nullptr, {}, observer.hook(spec_of(entry).label, flight.settings().duration));
+        }
+        observer.finished(result.spec.label, result.summary.end_time);
+        return result;
       },
       py::arg("scenario"), py::arg("controller"), py::kw_only(), py::arg("label") = py::none(),
+      py::arg("progress") = py::none(),
       "Flies `controller` (a registered name or spec string, thetad.controller(...), or a thetad.Controller "
       "subclass instance) through `scenario` (a file or a shipped scenario's name). Run controls as keywords: "
-      "seed, duration, dt, log_every, summary_only, timing, ideal, the disturbance switches, actuator_limits and anti_windup.");
+      "seed, duration, dt, log_every, summary_only, timing, ideal, the disturbance switches, actuator_limits and "
+      "anti_windup. progress: None or progress(t, duration), called with the simulated seconds at most 10 times "
+      "a second and once at the end. Ctrl-C stops the flight within ~0.1 s and raises KeyboardInterrupt.");
 
   module.def(
       "compare",
-      [](const std::string& scenario, const py::sequence& controllers, const py::kwargs& controls) {
+      [](const std::string& scenario, const py::sequence& controllers, py::object progress, const py::kwargs& controls) {
         const RunControls parsed = run_controls(controls);
         std::vector<Entry> entries;
         std::vector<ControllerSpec> specs;
@@ -168,16 +179,23 @@ void bind_flights(py::module_& module) {
         }
         check_labels(specs);
         std::vector<PreparedController> prepared;
+        FlightObserver observer(std::move(progress));
         std::vector<RunResult> results;
         py::gil_scoped_release unlocked;
         const Flight flight(scenario, parsed);
         for (Entry& entry : entries) prepared.push_back(prepare(flight, entry));
-        for (PreparedController& controller : prepared) results.push_back(flight.fly(controller));
+        for (PreparedController& controller : prepared) {
+          const auto observe = observer.hook(controller.spec.label, flight.settings().duration);
+          results.push_back(flight.fly(controller, nullptr, {}, observe));
+          py::gil_scoped_acquire locked;
+          observer.finished(controller.spec.label, results.back().summary.end_time);
+        }
         return results;
       },
-      py::arg("scenario"), py::arg("controllers"),
+      py::arg("scenario"), py::arg("controllers"), py::kw_only(), py::arg("progress") = py::none(),
       "The same flight (same seed: same perturbed plant and noise) for each controller, in order: a list of "
-      "RunResult. Labels must differ ('paper=theta-d', thetad.controller(..., label=...)).");
+      "RunResult. Labels must differ ('paper=theta-d', thetad.controller(..., label=...)). progress and Ctrl-C "
+      "as for run, progress starting anew for each controller.");
 
   module.def("comparison_table", &comparison_table, py::arg("results"),
              "The table `thetad compare` prints, for a list of RunResult");

@@ -1,4 +1,5 @@
-// The helicopter: f(x, u), its state-dependent coefficients, trims, and the Table 1 draw of a seed.
+// The helicopter: f(x, u), its state-dependent coefficients, its exact linearization, trims, and the
+// Table 1 draw of a seed.
 
 #include <cstdint>
 #include <optional>
@@ -9,6 +10,7 @@
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 
+#include "controllers/linearization.hpp"
 #include "core/error.hpp"
 #include "core/helicopter/helicopter.hpp"
 #include "core/helicopter/uncertainty.hpp"
@@ -81,6 +83,27 @@ py::list report_rows(const std::vector<heli::UncertaintyReport>& report) {
   return rows;
 }
 
+py::dict options_of(const heli::Helicopter& plant) {
+  py::dict options;
+  for (const auto name : heli::ModelOptions::names) options[py::str(std::string(name))] = plant.options().get(name);
+  return options;
+}
+
+std::string repr(const Eigen::VectorXd& v) { return py::repr(py::cast(v)).cast<std::string>(); }
+
+// ∂f/∂x and ∂f/∂u at (x, u) from the plant's own Jacobian (SdcPlant::jacobian: by hand for the
+// helicopter), not by differences.
+Linearization exact_linearization(const SdcPlant& plant, py::handle x, py::handle u) {
+  const VectorArgument state(x, "linearize: x", plant.state_dim());
+  const VectorArgument input(u, "linearize: u", plant.input_dim());
+  Linearization linear{Eigen::MatrixXd(plant.state_dim(), plant.state_dim()),
+                       Eigen::MatrixXd(plant.state_dim(), plant.input_dim())};
+  py::gil_scoped_release unlocked;
+  if (!plant.jacobian(state.vector(), input.vector(), linear.A, linear.B))
+    throw Error("linearize: the plant has no exact Jacobian");
+  return linear;
+}
+
 }  // namespace
 
 void bind_model(py::module_& module) {
@@ -93,7 +116,37 @@ void bind_model(py::module_& module) {
       .def_readonly("rotor_speed", &Trim::rotor_speed, "Omega_mr (rad/s)")
       .def_readonly("residual", &Trim::residual, "distance from the commanded motion")
       .def_readonly("solver_status", &Trim::solver_status)
-      .def_readonly("iterations", &Trim::iterations);
+      .def_readonly("iterations", &Trim::iterations)
+      .def("__repr__", [](const Trim& t) {
+        return "Trim(input=" + repr(t.input) + ", rotor_speed=" + py::repr(py::float_(t.rotor_speed)).cast<std::string>() +
+               ", residual=" + py::repr(py::float_(t.residual)).cast<std::string>() + ")";
+      });
+
+  py::class_<DesignDefaults>(module, "DesignDefaults",
+                             "A plant's design defaults: the diagonals of Q and R and the input u0 where the first "
+                             "SDC is taken. Unpacks as (q, r, u0).")
+      .def_readonly("state_weights", &DesignDefaults::state_weights, "diagonal of Q (n,)")
+      .def_readonly("input_weights", &DesignDefaults::input_weights, "diagonal of R (m,)")
+      .def_readonly("input", &DesignDefaults::input, "u0 (m,): the hover thrust m g for the helicopter")
+      .def("__iter__",
+           [](const DesignDefaults& d) { return py::iter(py::make_tuple(d.state_weights, d.input_weights, d.input)); })
+      .def("__repr__", [](const DesignDefaults& d) {
+        return "DesignDefaults(state_weights=" + repr(d.state_weights) + ", input_weights=" + repr(d.input_weights) +
+               ", input=" + repr(d.input) + ")";
+      });
+
+  py::class_<Linearization>(module, "Linearization", "ẋ ≈ f(x*, u*) + A (x − x*) + B (u − u*). Unpacks as (A, B).")
+      .def_readonly("A", &Linearization::A, "∂f/∂x (n, n)")
+      .def_readonly("B", &Linearization::B, "∂f/∂u (n, m)")
+      .def("__iter__", [](const Linearization& l) { return py::iter(py::make_tuple(l.A, l.B)); })
+      .def("__repr__", [](const Linearization& l) {
+        return "Linearization(n=" + std::to_string(l.A.rows()) + ", m=" + std::to_string(l.B.cols()) + ")";
+      });
+
+  module.def(
+      "linearize", [](const heli::Helicopter& plant, py::handle x, py::handle u) { return exact_linearization(plant, x, u); },
+      py::arg("plant"), py::arg("x"), py::arg("u"),
+      "The plant's exact Jacobians at (x, u), from its hand-written derivatives: A, B = thetad.linearize(plant, x, u).");
 
   module.def(
       "uncertainty_draw", [](std::uint64_t seed) { return report_rows(draw(seed).report); }, py::arg("seed"),
@@ -113,13 +166,9 @@ void bind_model(py::module_& module) {
       .def_property_readonly_static("input_names", [](py::handle) { return input_names(); })
       .def_property_readonly("state_dim", &heli::Helicopter::state_dim)
       .def_property_readonly("input_dim", &heli::Helicopter::input_dim)
-      .def_property_readonly("options",
-                             [](const heli::Helicopter& plant) {
-                               py::dict options;
-                               for (const auto name : heli::ModelOptions::names)
-                                 options[py::str(std::string(name))] = plant.options().get(name);
-                               return options;
-                             })
+      .def_property_readonly("options", &options_of)
+      .def("__repr__",
+           [](const heli::Helicopter& plant) { return "Helicopter(" + py::repr(options_of(plant)).cast<std::string>() + ")"; })
       .def(
           "f",
           [](const heli::Helicopter& plant, py::handle x, py::handle u) {
@@ -139,13 +188,8 @@ void bind_model(py::module_& module) {
           },
           py::arg("x"), py::arg("u") = py::none(),
           "(F, B) with F x + B u == f(x, u); u sets the rotor speed (default: hover thrust m g)")
-      .def(
-          "design_defaults",
-          [](const heli::Helicopter& plant) {
-            const DesignDefaults d = plant.design_defaults();
-            return py::make_tuple(d.state_weights, d.input_weights, d.input);
-          },
-          "(diag Q, diag R, u0): the paper's weights and hover thrust")
+      .def("design_defaults", &heli::Helicopter::design_defaults,
+           "DesignDefaults (diag Q, diag R, u0; unpacks as that tuple): the paper's weights and hover thrust")
       .def(
           "trim",
           [](const heli::Helicopter& plant, double altitude, double speed, double course, double climb_rate,

@@ -1,10 +1,12 @@
-// care, lqr and lyap: the Riccati and Lyapunov solvers of core/, numpy in and out.
+// care, lqr, dare, dlqr and lyap: the Riccati and Lyapunov solvers of core/, numpy in and out.
 
+#include <optional>
 #include <string>
 
 #include <pybind11/complex.h>
 #include <pybind11/eigen.h>
 
+#include "core/dare.hpp"
 #include "core/lyapunov.hpp"
 #include "core/riccati.hpp"
 #include "python/arrays.hpp"
@@ -32,32 +34,64 @@ MatrixArgument square(py::handle value, const std::string& what) {
   return matrix;
 }
 
-// The four matrices of A'P + PA − PBR⁻¹B'P + Q = 0, shapes checked against A and B.
-CareResult solve(const char* function, py::handle a, py::handle b, py::handle q, py::handle r, const std::string& method,
-                 bool estimates) {
-  const std::string name = function;
-  const MatrixArgument A = square(a, name + ": A");
+// The matrices of a Riccati equation, shapes checked against A and B: Q, R and the optional cross
+// term (S of the DARE, N of the LQR cost).
+struct Equation {
+  MatrixArgument A, B, Q, R;
+  std::optional<MatrixArgument> cross;
+};
+
+Equation equation(const std::string& function, py::handle a, py::handle b, py::handle q, py::handle r,
+                  py::handle cross = py::none(), const char* cross_name = "N") {
+  MatrixArgument A = square(a, function + ": A");
   const Eigen::Index n = A.rows();
-  const MatrixArgument B(b, name + ": B", n);
+  MatrixArgument B(b, function + ": B", n);
   const Eigen::Index m = B.cols();
-  const MatrixArgument Q(q, name + ": Q", n, n);
-  const MatrixArgument R(r, name + ": R", m, m);
-  const CareMethod chosen = care_method(method);
+  Equation e{std::move(A), std::move(B), MatrixArgument(q, function + ": Q", n, n),
+             MatrixArgument(r, function + ": R", m, m), {}};
+  if (!cross.is_none()) e.cross.emplace(cross, function + ": " + cross_name, n, m);
+  return e;
+}
+
+CareResult solve(const Equation& e, CareMethod method, bool estimates) {
+  const ErrorEstimates wanted = estimates ? ErrorEstimates::on : ErrorEstimates::off;
   py::gil_scoped_release unlocked;
-  return solve_care(A.matrix(), B.matrix(), Q.matrix(), R.matrix(), chosen,
-                    estimates ? ErrorEstimates::on : ErrorEstimates::off);
+  if (e.cross) return solve_care(e.A.matrix(), e.B.matrix(), e.Q.matrix(), e.R.matrix(), e.cross->matrix(), method, wanted);
+  return solve_care(e.A.matrix(), e.B.matrix(), e.Q.matrix(), e.R.matrix(), method, wanted);
+}
+
+DareResult solve_discrete(const Equation& e) {
+  py::gil_scoped_release unlocked;
+  if (e.cross) return solve_dare(e.A.matrix(), e.B.matrix(), e.Q.matrix(), e.R.matrix(), e.cross->matrix());
+  return solve_dare(e.A.matrix(), e.B.matrix(), e.Q.matrix(), e.R.matrix());
+}
+
+// The part of a Riccati result that CareResult and DareResult share: the stabilizing solution (named
+// `solution`), K, the closed loop's eigenvalues and the residual; unpacks as (K, solution,
+// eigenvalues), the order of python-control's lqr and dlqr.
+template <typename Result>
+py::class_<Result> riccati_result(py::module_& module, const char* name, const char* doc, const char* solution,
+                                  Eigen::MatrixXd Result::*X, const char* gain, const char* spectrum,
+                                  const char* residual) {
+  return py::class_<Result>(module, name, doc)
+      .def_readonly(solution, X, "stabilizing solution, exactly symmetric (n, n)")
+      .def_readonly("K", &Result::K, gain)
+      .def_readonly("eigenvalues", &Result::closed_loop_eigenvalues, spectrum)
+      .def_readonly("residual", &Result::relative_residual, residual)
+      .def("__iter__", [X](const Result& r) { return py::iter(py::make_tuple(r.K, r.*X, r.closed_loop_eigenvalues)); })
+      .def("__repr__", [name, X](const Result& r) {
+        return std::string(name) + "(n=" + std::to_string((r.*X).rows()) + ", m=" + std::to_string(r.K.rows()) +
+               ", residual=" + py::repr(py::float_(r.relative_residual)).cast<std::string>() + ")";
+      });
 }
 
 }  // namespace
 
 void bind_numerics(py::module_& module) {
-  py::class_<CareResult>(module, "CareResult",
-                         "The stabilizing solution of a CARE. Unpacks as (K, P, eigenvalues), as python-control's lqr.")
-      .def_readonly("P", &CareResult::P, "stabilizing solution, exactly symmetric (n, n)")
-      .def_readonly("K", &CareResult::K, "optimal gain R⁻¹B'P (m, n): u = −K x")
-      .def_readonly("eigenvalues", &CareResult::closed_loop_eigenvalues, "eig(A − BK), all in the open left half-plane")
-      .def_readonly("residual", &CareResult::relative_residual,
-                    "‖A'P + PA − PBR⁻¹B'P + Q‖_F / max(1, ‖Q‖_F)")
+  riccati_result(module, "CareResult",
+                 "The stabilizing solution of a CARE. Unpacks as (K, P, eigenvalues), as python-control's lqr.", "P",
+                 &CareResult::P, "optimal gain R⁻¹B'P (m, n): u = −K x",
+                 "eig(A − BK), all in the open left half-plane", "‖A'P + PA − PBR⁻¹B'P + Q‖_F / max(1, ‖Q‖_F)")
       .def_readonly("iterations", &CareResult::iterations, "Newton refinement steps after the direct solve")
       .def_readonly("sign_iterations", &CareResult::sign_iterations,
                     "inversions of the matrix-sign iteration (0 when P came from the Schur form)")
@@ -65,17 +99,19 @@ void bind_numerics(py::module_& module) {
                     "estimate of ‖P − P_exact‖_F / ‖P_exact‖_F (care(..., estimates=True); NaN otherwise)")
       .def_readonly("condition", &CareResult::condition,
                     "relative condition number of P, bounded as in docs/care-estimates.md (care(..., "
-                    "estimates=True); NaN otherwise)")
-      .def("__iter__", [](const CareResult& r) { return py::iter(py::make_tuple(r.K, r.P, r.closed_loop_eigenvalues)); })
-      .def("__repr__", [](const CareResult& r) {
-        return "CareResult(n=" + std::to_string(r.P.rows()) + ", m=" + std::to_string(r.K.rows()) +
-               ", residual=" + py::repr(py::float_(r.relative_residual)).cast<std::string>() + ")";
-      });
+                    "estimates=True); NaN otherwise)");
+
+  riccati_result(module, "DareResult",
+                 "The stabilizing solution of a DARE. Unpacks as (K, X, eigenvalues), as python-control's dlqr.", "X",
+                 &DareResult::X, "optimal gain (R + B'XB)⁻¹(B'XA + S') (m, n): u = −K x",
+                 "eig(A − BK), all inside the unit circle", "‖A'XA − X − (A'XB + S)K + Q‖_F / max(1, ‖Q‖_F)")
+      .def_readonly("doublings", &DareResult::doublings, "steps of the structure-preserving doubling algorithm")
+      .def_readonly("refinements", &DareResult::refinements, "Newton steps after the doubling (0 or 1)");
 
   module.def(
       "care",
       [](py::handle A, py::handle B, py::handle Q, py::handle R, const std::string& method, bool estimates) {
-        return solve("care", A, B, Q, R, method, estimates);
+        return solve(equation("care", A, B, Q, R), care_method(method), estimates);
       },
       py::arg("A"), py::arg("B"), py::arg("Q"), py::arg("R"), py::arg("method") = "automatic",
       py::arg("estimates") = false,
@@ -85,9 +121,30 @@ void bind_numerics(py::module_& module) {
       "naming the broken precondition (not stabilizable, Hamiltonian eigenvalues on the imaginary axis, ...).");
   module.def(
       "lqr",
-      [](py::handle A, py::handle B, py::handle Q, py::handle R) { return solve("lqr", A, B, Q, R, "automatic", false); },
-      py::arg("A"), py::arg("B"), py::arg("Q"), py::arg("R"),
-      "The infinite-horizon LQR of ẋ = Ax + Bu with cost ∫ x'Qx + u'Ru: K, P, eigenvalues = thetad.lqr(A, B, Q, R).");
+      [](py::handle A, py::handle B, py::handle Q, py::handle R, py::handle N) {
+        return solve(equation("lqr", A, B, Q, R, N), CareMethod::automatic, false);
+      },
+      py::arg("A"), py::arg("B"), py::arg("Q"), py::arg("R"), py::arg("N") = py::none(),
+      "The infinite-horizon LQR of ẋ = Ax + Bu with cost ∫ x'Qx + u'Ru + 2x'Nu: K, P, eigenvalues = "
+      "thetad.lqr(A, B, Q, R[, N]) (python-control's order); N is eliminated first (A − BR⁻¹N', Q − NR⁻¹N').");
+  module.def(
+      "dare",
+      [](py::handle A, py::handle B, py::handle Q, py::handle R, py::handle S) {
+        return solve_discrete(equation("dare", A, B, Q, R, S, "S"));
+      },
+      py::arg("A"), py::arg("B"), py::arg("Q"), py::arg("R"), py::arg("S") = py::none(),
+      "Solves X = A'XA − (A'XB + S)(R + B'XB)⁻¹(B'XA + S') + Q for the stabilizing X by structure-preserving "
+      "doubling (R invertible). The result's X is scipy.linalg.solve_discrete_are(A, B, Q, R, s=S). Raises "
+      "thetad.Error naming the reason (not stabilizable, a mode on the unit circle unseen by Q, R + B'XB not "
+      "positive definite, no convergence).");
+  module.def(
+      "dlqr",
+      [](py::handle A, py::handle B, py::handle Q, py::handle R, py::handle N) {
+        return solve_discrete(equation("dlqr", A, B, Q, R, N));
+      },
+      py::arg("A"), py::arg("B"), py::arg("Q"), py::arg("R"), py::arg("N") = py::none(),
+      "The infinite-horizon LQR of x[k+1] = Ax[k] + Bu[k] with cost Σ x'Qx + u'Ru + 2x'Nu: K, S, E = "
+      "thetad.dlqr(A, B, Q, R[, N]) as python-control's dlqr (S the DARE's solution, E = eig(A − BK)).");
   module.def(
       "lyap",
       [](py::handle a, py::handle q) {

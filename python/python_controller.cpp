@@ -17,6 +17,14 @@ std::string describe(const py::error_already_set& error) {
   return text;
 }
 
+// A Ctrl-C that a controller's Python code received (the signal is handled where Python runs)
+// would end the run as failed and be lost: it is raised again for the front end, which checks for
+// signals once the flight has ended (FlightObserver::finished). Last, after every other call into
+// Python: the interpreter may check for signals inside one and raise it there already.
+void pass_on_interrupt(const py::error_already_set& error) {
+  if (error.matches(PyExc_KeyboardInterrupt)) PyErr_SetInterrupt();
+}
+
 }  // namespace
 
 std::string PythonController::class_name() const {
@@ -37,20 +45,24 @@ void PythonController::reset(const Eigen::VectorXd& x0, double t0) {
     if (const py::function override = py::get_override(static_cast<const Controller*>(this), "reset"))
       override(py::array(x0.size(), x0.data()), t0);
   } catch (const py::error_already_set& error) {
-    throw Error(class_name() + ".reset raised " + describe(error));
+    Error failure(class_name() + ".reset raised " + describe(error));
+    pass_on_interrupt(error);
+    throw failure;
   }
 }
 
 void PythonController::control(double t, const Eigen::Ref<const Eigen::VectorXd>& measured_state,
                                const Reference& reference, Eigen::Ref<Eigen::VectorXd> u) {
   py::gil_scoped_acquire gil;
-  const py::function compute = py::get_override(static_cast<const Controller*>(this), "compute");
-  if (!compute) throw Error(class_name() + " does not define compute(self, t, x, reference)");
-  try {
+  try {  // the look-up too: a Ctrl-C can be raised there
+    const py::function compute = py::get_override(static_cast<const Controller*>(this), "compute");
+    if (!compute) throw Error(class_name() + " does not define compute(self, t, x, reference)");
     const py::object result = compute(t, py::array(measured_state.size(), measured_state.data()), reference);
     u = VectorArgument(result, class_name() + ".compute returned u", u.size()).vector();
   } catch (const py::error_already_set& error) {
-    throw Error(class_name() + ".compute raised " + describe(error));
+    Error failure(class_name() + ".compute raised " + describe(error));
+    pass_on_interrupt(error);
+    throw failure;
   } catch (const py::builtin_exception& error) {  // what VectorArgument raises for a wrong u
     throw Error(error.what());
   }

@@ -73,3 +73,49 @@ def test_wrong_state_shapes(hover_trim):
         plant.sdc(hover_trim.state, hover_trim.input.reshape(5, 1))
     with pytest.raises(TypeError, match="Helicopter.f: u"):
         plant.f(hover_trim.state, "u")
+
+
+def test_linearize_is_the_exact_jacobian(hover_trim):
+    """thetad.linearize's A, B (the plant's hand Jacobian) against central differences of f from Python,
+    at the hover trim and at disturbed states."""
+    plant = thetad.Helicopter()
+    rng = np.random.default_rng(8)
+    for step in (0.0, 0.05):
+        x = hover_trim.state + step * rng.standard_normal(18)
+        x[17] = 1.0
+        u = hover_trim.input * (1.0 + step * rng.standard_normal(5))
+        linear = thetad.linearize(plant, x, u)
+        A, B = linear
+        assert A.shape == (18, 18) and B.shape == (18, 5)
+        assert repr(linear) == "Linearization(n=18, m=5)"
+        z = np.concatenate([x, u])
+        columns = []
+        for j in range(23):
+            h = 1e-6 * max(1.0, abs(z[j]))
+            forward, backward = z.copy(), z.copy()
+            forward[j] += h
+            backward[j] -= h
+            columns.append((plant.f(forward[:18], forward[18:]) - plant.f(backward[:18], backward[18:])) / (2 * h))
+        J = np.array(columns).T
+        scale = np.maximum(1.0, np.abs(np.hstack([A, B])))
+        assert np.max(np.abs(np.hstack([A, B]) - J) / scale) < 1e-6
+    with pytest.raises(ValueError, match=r"linearize: u: expected shape \(5,\)"):
+        thetad.linearize(plant, x, np.zeros(4))
+
+
+def test_design_defaults_have_names_and_still_unpack():
+    plant = thetad.Helicopter()
+    defaults = plant.design_defaults()
+    q, r, u0 = defaults
+    np.testing.assert_array_equal(q, defaults.state_weights)
+    np.testing.assert_array_equal(r, defaults.input_weights)
+    np.testing.assert_array_equal(u0, defaults.input)
+    assert q.shape == (18,) and r.shape == (5,) and u0.shape == (5,)
+    assert repr(defaults).startswith("DesignDefaults(state_weights=array([")
+
+
+def test_reprs_say_what_an_object_is(hover_trim):
+    assert repr(thetad.Helicopter()).startswith("Helicopter({")
+    assert repr(hover_trim).startswith("Trim(input=array([")
+    built = thetad.controller("theta-d", label="mine")
+    assert repr(built) == "RegisteredController(label='mine', controller='theta-d')"

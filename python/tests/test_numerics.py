@@ -153,3 +153,22 @@ def test_non_finite_entries_raise_the_library_error():
     A[0, 1] = np.nan
     with pytest.raises(thetad.Error, match="finite"):
         thetad.care(A, np.ones((2, 1)), np.eye(2), np.eye(1))
+
+
+def test_lqr_with_a_cross_term_agrees_with_scipy():
+    """The cost x'Qx + u'Ru + 2x'Nu: scipy's solve_continuous_are(..., s=N), K = R⁻¹(B'P + N')."""
+    rng = np.random.default_rng(3)
+    for n, m in [(2, 1), (5, 2), (12, 4)]:
+        A = rng.standard_normal((n, n))
+        B = rng.standard_normal((n, m))
+        N = 0.3 * rng.standard_normal((n, m))
+        R = np.eye(m)
+        Q = N @ np.linalg.solve(R, N.T) + np.eye(n)  # Q − NR⁻¹N' = I: a convex cost
+        K, P, eigenvalues = thetad.lqr(A, B, Q, R, N)
+        P_scipy = scipy.linalg.solve_continuous_are(A, B, Q, R, s=N)
+        np.testing.assert_allclose(P, P_scipy, rtol=1e-9, atol=1e-10 * np.linalg.norm(P_scipy))
+        np.testing.assert_allclose(K, np.linalg.solve(R, B.T @ P_scipy + N.T), rtol=1e-8, atol=1e-9)
+        np.testing.assert_allclose(np.sort_complex(eigenvalues), np.sort_complex(np.linalg.eigvals(A - B @ K)),
+                                   rtol=1e-8, atol=1e-9)
+    with pytest.raises(ValueError, match=r"lqr: N: expected shape \(2, 1\), got \(1, 2\)"):
+        thetad.lqr(np.eye(2), np.ones((2, 1)), np.eye(2), np.eye(1), np.ones((1, 2)))

@@ -1,6 +1,6 @@
 """thetad from Python: the θ–D, SDRE and LQR controllers on the X-Cell helicopter model, at C++ speed.
 
-The numerics (care, lqr, lyap), the model (Helicopter), the registered controllers (controller,
+The numerics (care, lqr, dare, dlqr, lyap), the model (Helicopter), the registered controllers (controller,
 controllers), controllers written in Python (subclasses of Controller) and flights (run, compare)
 come from the C++ library through the extension module thetad._thetad. docs/python.md is the guide.
 """
@@ -25,8 +25,11 @@ _point_at_installed_data()
 from ._thetad import (  # noqa: E402  (after the data folder is known)
     CareResult,
     Controller,
+    DareResult,
+    DesignDefaults,
     Error,
     Helicopter,
+    Linearization,
     Reference,
     RegisteredController,
     RunResult,
@@ -37,7 +40,10 @@ from ._thetad import (  # noqa: E402  (after the data folder is known)
     comparison_table,
     controller,
     controllers,
+    dare,
+    dlqr,
     input_names,
+    linearize,
     lqr,
     lyap,
     run,
@@ -46,7 +52,7 @@ from ._thetad import (  # noqa: E402  (after the data folder is known)
 )
 
 __all__ = [
-    "CareResult", "Controller", "Error", "Helicopter", "Reference", "RegisteredController", "RunResult", "Trim",
-    "care", "compare", "comparison_table", "controller", "controllers", "input_names", "lqr", "lyap", "run",
-    "state_names", "uncertainty_draw",
+    "CareResult", "Controller", "DareResult", "DesignDefaults", "Error", "Helicopter", "Linearization", "Reference",
+    "RegisteredController", "RunResult", "Trim", "care", "compare", "comparison_table", "controller", "controllers",
+    "dare", "dlqr", "input_names", "linearize", "lqr", "lyap", "run", "state_names", "uncertainty_draw",
 ]

@@ -36,6 +36,25 @@ using testing::read_fixture;
 const std::pair<CareMethod, const char*> kMethods[] = {
     {CareMethod::automatic, "automatic"}, {CareMethod::matrix_sign, "matrix_sign"}, {CareMethod::schur, "schur"}};
 
+// The cost x'Qx + u'Ru + 2x'Nu: A'P + PA − (PB + N)R⁻¹(B'P + N') + Q = 0 and K = R⁻¹(B'P + N').
+TEST(SolveCare, CrossTerm) {
+  const MatrixXd A = (MatrixXd(3, 3) << 0.5, 1, 0, 0, -0.2, 1, 1, 0, 0.1).finished();
+  const MatrixXd B = (MatrixXd(3, 2) << 0, 1, 1, 0, 0.5, 0.5).finished();
+  const MatrixXd N = (MatrixXd(3, 2) << 0.2, 0, -0.1, 0.3, 0, 0.1).finished();
+  const MatrixXd R = (MatrixXd(2, 2) << 2, 0.5, 0.5, 1).finished();
+  const MatrixXd Q = N * R.llt().solve(N.transpose()) + MatrixXd::Identity(3, 3);  // Q − NR⁻¹N' = I
+  const CareResult result = solve_care(A, B, Q, R, N);
+  const MatrixXd coupling = B.transpose() * result.P + N.transpose();
+  const MatrixXd residual = A.transpose() * result.P + result.P * A - coupling.transpose() * R.llt().solve(coupling) + Q;
+  EXPECT_LE(residual.norm(), 1e-13 * result.P.norm() * A.norm());
+  EXPECT_LE((R * result.K - coupling).norm(), 1e-13 * coupling.norm());
+  const Eigen::VectorXcd closed_loop = Eigen::EigenSolver<MatrixXd>(A - B * result.K, false).eigenvalues();
+  EXPECT_LT(closed_loop.real().maxCoeff(), 0.0);
+  EXPECT_THAT(error_message([&] { solve_care(A, B, Q, R, MatrixXd::Zero(2, 3)); }),
+              HasSubstr("CARE: N is 2x3 but B is 3x2"));
+  EXPECT_THAT(error_message([&] { solve_care(A, B, Q, -R, N); }), HasSubstr("CARE: R is not symmetric positive definite"));
+}
+
 TEST(SolveCare, DoubleIntegratorClosedForm) {
   MatrixXd A(2, 2);
   A << 0, 1, 0, 0;
