@@ -53,10 +53,25 @@ def read_campaign(database):
     return meta, runs
 
 
+def factor_value(value):
+    return value if isinstance(value, str) else float(value)
+
+
 def cell_label(row, swept):
     if not swept:
         return "all runs"
-    return ", ".join(f"{name}={row[name]:g}" for name in swept)
+    return ", ".join(f"{name}={row[name]}" if isinstance(row[name], str) else f"{name}={row[name]:g}"
+                     for name in swept)
+
+
+def by_scenario(runs, swept):
+    """With several scenarios, each (cell, scenario) is reported as a cell of its own, the scenario
+    its last factor: a figure of one scenario is not pooled with another's."""
+    if runs.scenario.nunique() < 2:
+        return runs, swept
+    runs = runs.copy()
+    runs["cell"] = runs.groupby(["cell", "scenario"], sort=True).ngroup()
+    return runs, swept + ["scenario"]
 
 
 def controller_rows(runs, controllers, swept):
@@ -68,7 +83,7 @@ def controller_rows(runs, controllers, swept):
         rows.append({
             "cell": int(cell),
             "cell_label": cell_label(group.iloc[0], swept),
-            "factors": {name: float(group.iloc[0][name]) for name in swept},
+            "factors": {name: factor_value(group.iloc[0][name]) for name in swept},
             "controller": label,
             "information": ", ".join(sorted(set(group.information))),
             "runs": int(len(group)),
@@ -159,7 +174,7 @@ def main():
     if runs.empty:
         raise SystemExit(f"{args.database}: no runs stored yet")
     controllers = json.loads(meta["controllers"])
-    swept = json.loads(meta["swept"])
+    runs, swept = by_scenario(runs, json.loads(meta["swept"]))
     per_controller = controller_rows(runs, controllers, swept)
     paired = paired_rows(runs, controllers, swept, args.seed, args.resamples)
     for row in paired:

@@ -86,3 +86,15 @@ def test_reason_kind_drops_numbers_and_times():
     assert campaign_stats.reason_kind("roll |phi| = 1.5 rad exceeds 1.48 rad at t = 3.2000 s") == "roll |phi|"
     assert campaign_stats.reason_kind("controller failed at t = 0.5000 s: CARE: no solution") == "controller failed"
     assert campaign_stats.reason_kind("non-finite state at t = 1.0000 s") == "non-finite state"
+
+
+def test_the_report_keeps_scenarios_apart():
+    import pandas as pd
+    import campaign_report
+    runs = pd.DataFrame({"cell": [0, 0, 1, 1], "scenario": ["b", "a", "b", "a"], "course": [0.0, 0.0, 90.0, 90.0]})
+    split, swept = campaign_report.by_scenario(runs, ["course"])
+    assert swept == ["course", "scenario"]
+    assert list(split.cell) == [1, 0, 3, 2]
+    assert campaign_report.cell_label(split.iloc[2], swept) == "course=90, scenario=b"
+    one, same = campaign_report.by_scenario(runs[runs.scenario == "a"], ["course"])
+    assert same == ["course"] and list(one.cell) == [0, 1]
