@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "controllers/registry.hpp"
 #include "core/error.hpp"
 #include "experiment/flight.hpp"
 #include "experiment/result_json.hpp"
@@ -98,6 +99,10 @@ Replay replay(const std::filesystem::path& result_file, Progress* progress) {
     const Flight flight = recorded_flight(recorded, result_file.string());
     ControllerSpec spec{recorded.at("label").get<std::string>(), recorded.at("controller").get<std::string>(),
                         json_to_yaml(recorded.at("controller_settings")), result_file.string(), {}};
+    if (!ControllerRegistry::instance().contains(spec.controller))
+      throw Error(result_file.string() + ": the run flew the controller '" + spec.controller + "' (" +
+                  recorded.value("controller_origin", std::string("origin not recorded")) +
+                  "), which is not registered: load the plug-in that has it (--plugin PATH or THETAD_PLUGIN_PATH)");
     PreparedController prepared = flight.prepare(spec);
     Replay outcome{flight.fly(prepared, progress), {}};
     const Json again = summary_json(outcome.result.summary);

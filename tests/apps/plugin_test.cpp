@@ -58,6 +58,12 @@ TEST_F(Plugins, APluginControllerFliesLikeABuiltInOne) {
               HasSubstr("plug-in " + fs::canonical(THETAD_EXAMPLE_PLUGIN).string() + " (sha256 "));
   EXPECT_EQ(read("built-in")["controller_origin"], "built-in");
   EXPECT_LT(read("plugged")["tracking_error_m"]["max"][2].get<double>(), 0.05);
+  // A replay without the plug-in says which one flew it.
+  const Output without = thetad("run --replay " + path("out/plugged.json"));
+  EXPECT_EQ(without.status, 1);
+  EXPECT_THAT(without.err, HasSubstr("the run flew the controller 'example-pid-plugin' (plug-in " +
+                                     fs::canonical(THETAD_EXAMPLE_PLUGIN).string() + " (sha256 "));
+  EXPECT_THAT(without.err, HasSubstr("load the plug-in that has it (--plugin PATH or THETAD_PLUGIN_PATH)"));
 }
 
 TEST_F(Plugins, ThePluginPathLoadsFilesAndFolders) {
