@@ -1,5 +1,6 @@
 #include "tuning/parameterization.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/error.hpp"
@@ -50,29 +51,21 @@ Parameterization weight_parameters(const std::string& controller, const YAML::No
   const std::vector<TrackedState> tracked = plant.tracked_states();
   const std::string reference_unit = tracked.empty() ? states.front().unit : states[static_cast<std::size_t>(tracked.front().index)].unit;
 
-  // group[j] of state j: the parameter it takes, −1 for none (the reference group, zero weights).
-  std::vector<int> group(states.size(), -1);
   Parameterization weights;
   weights.controller = controller;
   weights.kind = "weights";
+  // state_parameter[j]: the factor state j takes, one per unit; none for the reference group and
+  // for zero weights, which no factor changes.
+  std::vector<int> state_parameter(states.size(), -1);
   std::vector<std::string> units;
   for (std::size_t j = 0; j < states.size(); ++j) {
     const std::string& unit = states[j].unit;
-    if (unit == reference_unit) continue;
-    std::size_t g = 0;
-    while (g < units.size() && units[g] != unit) ++g;
-    if (g == units.size()) units.push_back(unit);
-    group[j] = static_cast<int>(g);
-  }
-  // Groups whose weights are all zero have nothing to scale.
-  std::vector<int> parameter(units.size(), -1);
-  for (std::size_t g = 0; g < units.size(); ++g) {
-    for (std::size_t j = 0; j < states.size(); ++j) {
-      if (group[j] == static_cast<int>(g) && Q0[static_cast<Eigen::Index>(j)] > 0.0) {
-        parameter[g] = static_cast<int>(weights.names.size());
-        weights.names.push_back("log10 Q[" + units[g] + "]");
-        break;
-      }
+    if (unit == reference_unit || !(Q0[static_cast<Eigen::Index>(j)] > 0.0)) continue;
+    const auto found = std::find(units.begin(), units.end(), unit);
+    state_parameter[j] = static_cast<int>(found - units.begin());
+    if (found == units.end()) {
+      units.push_back(unit);
+      weights.names.push_back("log10 Q[" + unit + "]");
     }
   }
   const auto state_groups = static_cast<int>(weights.names.size());
@@ -80,9 +73,6 @@ Parameterization weight_parameters(const std::string& controller, const YAML::No
   const auto size = static_cast<Eigen::Index>(weights.names.size());
   weights.box = {Eigen::VectorXd::Constant(size, -log10_bound), Eigen::VectorXd::Constant(size, log10_bound),
                  Eigen::VectorXd::Zero(size)};
-  std::vector<int> state_parameter(states.size(), -1);
-  for (std::size_t j = 0; j < states.size(); ++j)
-    if (group[j] >= 0) state_parameter[j] = parameter[static_cast<std::size_t>(group[j])];
   weights.spec = [base, controller, Q0, R0, state_parameter, state_groups](const Eigen::VectorXd& x,
                                                                           const std::string& label) {
     Eigen::VectorXd Q = Q0, R = R0;
