@@ -1,17 +1,21 @@
 #include "campaigns/campaign_progress.hpp"
 
 #include <cstdio>
+#include <utility>
 
 namespace thetad {
 
-CampaignProgress::CampaignProgress(Progress::Mode mode, std::string name, std::int64_t total, std::int64_t done)
+CampaignProgress::CampaignProgress(Progress::Mode mode, std::string name, std::int64_t total, std::int64_t done,
+                                   ProgressObserver observer)
     : mode_(mode),
       name_(std::move(name)),
+      observer_(std::move(observer)),
       total_(total),
       stored_(done),
       interval_(progress_interval()),
       started_(Clock::now()),
       last_shown_(started_) {
+  notify();
   if (mode_ == Progress::Mode::quiet) return;
   std::fprintf(stderr, "%s: %lld runs, %lld already stored, %lld to fly\n", name_.c_str(),
                static_cast<long long>(total_), static_cast<long long>(stored_),
@@ -31,9 +35,15 @@ std::string CampaignProgress::status() const {
   return text;
 }
 
+void CampaignProgress::notify() const {
+  static const std::string unit = "runs";
+  if (observer_) observer_({name_, static_cast<double>(stored_ + flown_), static_cast<double>(total_), unit});
+}
+
 void CampaignProgress::add(bool diverged) {
   ++flown_;
   if (diverged) ++diverged_;
+  notify();
   if (mode_ == Progress::Mode::quiet) return;
   const auto now = Clock::now();
   if (mode_ == Progress::Mode::live && now - last_shown_ >= std::chrono::milliseconds(200)) {

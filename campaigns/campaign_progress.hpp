@@ -10,13 +10,18 @@ namespace thetad {
 
 // A campaign's progress on stderr: runs done of the total, the rate, the ETA and the failures so
 // far. Redrawn in place on a terminal; a plain line every progress_interval() (10 s) under CI, in
-// a pipe or in a cluster job's log.
+// a pipe or in a cluster job's log. An observer (experiment/progress.hpp) sees the runs done of the
+// total as each is stored.
 class CampaignProgress {
  public:
   // `total` runs of which `done` are already stored (resume).
-  CampaignProgress(Progress::Mode mode, std::string name, std::int64_t total, std::int64_t done);
+  CampaignProgress(Progress::Mode mode, std::string name, std::int64_t total, std::int64_t done,
+                   ProgressObserver observer = {});
 
+  // Throws what the observer throws (the run is stored: a resume continues after it).
   void add(bool diverged);
+  // Shows the observer the count again, so that it can stop the campaign while no run ends.
+  void tick() const { notify(); }
   void finish();
 
   std::int64_t flown() const { return flown_; }
@@ -25,9 +30,11 @@ class CampaignProgress {
  private:
   using Clock = std::chrono::steady_clock;
   std::string status() const;
+  void notify() const;
 
   Progress::Mode mode_;
   std::string name_;
+  ProgressObserver observer_;
   std::int64_t total_, stored_, flown_ = 0, diverged_ = 0;
   std::chrono::duration<double> interval_;
   Clock::time_point started_, last_shown_;

@@ -51,12 +51,16 @@ class ThreadPool {
   ThreadPool(const Campaign& campaign, const CampaignOptions& options, RunDispenser& dispenser, int threads) {
     for (int i = 0; i < threads; ++i) {
       threads_.emplace_back([this, &campaign, &options, &dispenser] {
+        // A stop (the writer failed or was interrupted) abandons the flights under way.
+        const auto abandon_when_stopped = [this](double) {
+          if (stop_) throw Error("campaign stopped");
+        };
         try {
           CampaignWorker worker(campaign, options.timing, kept_logs(options));
           while (!stop_) {
             const auto index = dispenser.next();
             if (!index) break;
-            RunRecord record = worker.fly(*index);
+            RunRecord record = worker.fly(*index, abandon_when_stopped);
             const std::lock_guard lock(mutex_);
             finished_.push_back(std::move(record));
             ready_.notify_one();
@@ -118,7 +122,8 @@ CampaignOutcome coordinate(const Campaign& campaign, const CampaignOptions& opti
     ++runs;
     if (!stored.contains(i)) pending.push_back(i);
   }
-  CampaignProgress progress(options.progress, campaign.name, runs, runs - static_cast<std::int64_t>(pending.size()));
+  CampaignProgress progress(options.progress, campaign.name, runs, runs - static_cast<std::int64_t>(pending.size()),
+                            options.observer);
   RunDispenser dispenser(std::move(pending));
   const int remote = mpi ? mpi->size() - 1 : 0;
   int stopped = 0;
@@ -139,6 +144,7 @@ CampaignOutcome coordinate(const Campaign& campaign, const CampaignOptions& opti
     }
     store.write(batch);
     for (const RunRecord& record : batch) progress.add(!record.completed());
+    progress.tick();
     written += batch.size();
   }
   progress.finish();

@@ -20,6 +20,7 @@ struct CampaignOptions {
   // complete, under out/logs (KeptLogs); none without.
   std::optional<int> keep_logs;
   Progress::Mode progress = Progress::Mode::lines;
+  ProgressObserver observer;  // sees the runs stored (CampaignProgress); what it throws stops the campaign
 };
 
 struct CampaignOutcome {

@@ -38,21 +38,22 @@ PreparedController& CampaignWorker::controller(const Flight& flight, int scenari
   return *prepared;
 }
 
-RunRecord CampaignWorker::fly(std::int64_t index) {
+RunRecord CampaignWorker::fly(std::int64_t index, const std::function<void(double t)>& observe) {
   const PlannedRun run = planned_run(campaign_, index);
   Flight& cell = flight(run.cell, run.scenario);
   PreparedController& prepared = controller(cell, run.scenario, run.controller);
   cell.set_seed(run.seed);
   const bool kept = logs_ && logs_->keeps(run);
-  const RunResult result = kept ? fly_logged(cell, prepared, index) : cell.fly(prepared);
-  if (logs_ && !kept && !result.completed()) fly_logged(cell, prepared, index);
+  const RunResult result = kept ? fly_logged(cell, prepared, index, observe) : cell.fly(prepared, nullptr, {}, observe);
+  if (logs_ && !kept && !result.completed()) fly_logged(cell, prepared, index, observe);
   return make_record(run, campaign_.cells[static_cast<std::size_t>(run.cell)], result);
 }
 
-RunResult CampaignWorker::fly_logged(Flight& flight, PreparedController& prepared, std::int64_t index) const {
+RunResult CampaignWorker::fly_logged(Flight& flight, PreparedController& prepared, std::int64_t index,
+                                     const std::function<void(double t)>& observe) const {
   const bool keep_log = flight.settings().keep_log;
   flight.set_keep_log(true);
-  RunResult result = flight.fly(prepared);
+  RunResult result = flight.fly(prepared, nullptr, {}, observe);
   flight.set_keep_log(keep_log);
   write_run_files(result, logs_->run_folder(index));
   return result;

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -30,8 +31,9 @@ class CampaignWorker {
 
   // Flies run `index` summary-only; a run whose log is kept flies with it and writes its files,
   // and one that did not complete flies again with its log (its seed flies the same run, bit for
-  // bit), so that only the few runs kept pay for a log.
-  RunRecord fly(std::int64_t index);
+  // bit), so that only the few runs kept pay for a log. `observe` (Flight::fly's) may throw to
+  // abandon the run.
+  RunRecord fly(std::int64_t index, const std::function<void(double t)>& observe = {});
 
   // Builds every (cell, scenario) flight and every controller once: a bad factor value (a dt that
   // does not divide the controller period) or controller settings fail here, before anything flies.
@@ -48,7 +50,8 @@ class CampaignWorker {
   Flight& flight(int cell, int scenario);
   PreparedController& controller(const Flight& flight, int scenario, int index);
   // The run `prepared` flies in `flight`, with its log, written to the folder of run `index`.
-  RunResult fly_logged(Flight& flight, PreparedController& prepared, std::int64_t index) const;
+  RunResult fly_logged(Flight& flight, PreparedController& prepared, std::int64_t index,
+                       const std::function<void(double t)>& observe) const;
 
   // A controller's design: scenario, initial state and controller index.
   using DesignKey = std::tuple<int, std::vector<double>, int>;

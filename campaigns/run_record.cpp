@@ -40,8 +40,11 @@ RunRecord make_record(const PlannedRun& run, const FactorValues& factors, const 
                     s.max_tracking_error.z(), s.max_tracking_error.maxCoeff(), s.cost,
                     s.cost_dev.value_or(std::numeric_limits<double>::quiet_NaN())};
   for (int i = 0; i < s.command_rms.size(); ++i) record.metrics.push_back(s.command_rms[i]);
-  record.metrics.insert(record.metrics.end(), {s.compute_ns_mean / 1e3, s.compute_ns_median / 1e3,
-                                               s.compute_ns_p99 / 1e3, result.wall_seconds});
+  // Without timing there is no figure to give: NULL in the database, not a 0 a reader could average.
+  const bool timed = s.settings.measure_compute_time;
+  const double none = std::numeric_limits<double>::quiet_NaN();
+  record.metrics.insert(record.metrics.end(), {timed ? s.compute_ns_mean / 1e3 : none, timed ? s.compute_ns_median / 1e3 : none,
+                                               timed ? s.compute_ns_p99 / 1e3 : none, timed ? result.wall_seconds : none});
   return record;
 }
 
@@ -69,7 +72,9 @@ RunRecord record_from_json(const nlohmann::json& j) {
   r.information = j.at("information").get<std::string>();
   r.end_time = j.at("end_time").get<double>();
   r.controller_samples = j.at("samples").get<std::int64_t>();
-  r.metrics = j.at("metrics").get<std::vector<double>>();
+  // JSON has no NaN: a figure the run does not have (J_dev, timing) travels as null.
+  for (const auto& value : j.at("metrics"))
+    r.metrics.push_back(value.is_null() ? std::numeric_limits<double>::quiet_NaN() : value.get<double>());
   return r;
 }
 

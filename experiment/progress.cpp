@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <utility>
 
 namespace thetad {
 
@@ -21,7 +22,8 @@ std::chrono::duration<double> progress_interval() {
   return std::chrono::duration<double>(10.0);
 }
 
-Progress::Progress(Mode mode) : mode_(mode), interval_(progress_interval()) {}
+Progress::Progress(Mode mode, ProgressObserver observer)
+    : mode_(mode), observer_(std::move(observer)), interval_(progress_interval()) {}
 
 std::string format_duration(double seconds) {
   char text[48];
@@ -63,11 +65,13 @@ void Progress::start(const std::string& label, double total, const std::string& 
   unit_ = unit;
   total_ = total;
   started_ = last_shown_ = Clock::now();
+  if (observer_) observer_({label_, 0.0, total_, unit_});
   if (mode_ == Mode::lines)
     std::fprintf(stderr, "%s %s (%s)\n", label_.c_str(), unit_.empty() ? "flying" : "started", what().c_str());
 }
 
 void Progress::update(double done, const std::string& note) {
+  if (observer_) observer_({label_, done, total_, unit_});
   if (mode_ == Mode::quiet) return;
   const auto now = Clock::now();
   const auto since = now - last_shown_;
@@ -81,6 +85,7 @@ void Progress::update(double done, const std::string& note) {
 }
 
 void Progress::finish(const std::string& outcome) {
+  if (observer_) observer_({label_, total_, total_, unit_});
   if (mode_ == Mode::quiet) return;
   if (mode_ == Mode::live) std::fprintf(stderr, "\r\033[K");
   std::fprintf(stderr, "%s %s\n", label_.c_str(), outcome.c_str());

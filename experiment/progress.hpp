@@ -1,6 +1,7 @@
 #pragma once
 
 #include <chrono>
+#include <functional>
 #include <string>
 
 namespace thetad {
@@ -9,13 +10,23 @@ namespace thetad {
 // it is one line redrawn in place; anywhere else (CI set, a pipe, a cluster job's log) it is a
 // plain line every `interval` (10 s; THETAD_PROGRESS_INTERVAL=SECONDS changes it), so a long run
 // shows life without filling the log.
+// A caller that is not a person at a terminal (the Python module) watches a task through an
+// observer: called at every start and update and at the finish (done = total) of each task, it may
+// throw to stop the work, which then ends by that exception (Ctrl-C in Python).
+struct ProgressEvent {
+  const std::string& label;
+  double done, total;
+  const std::string& unit;  // "" for simulated seconds
+};
+using ProgressObserver = std::function<void(const ProgressEvent&)>;
+
 class Progress {
  public:
   enum class Mode { quiet, live, lines };
   // live when stderr is a terminal and CI is unset, lines otherwise; quiet when asked for.
   static Mode mode_for_stderr(bool quiet);
 
-  explicit Progress(Mode mode);
+  explicit Progress(Mode mode, ProgressObserver observer = {});
 
   // One task of `total` units, shown under `label`: simulated seconds when `unit` is empty (with
   // the real-time factor), else counted things such as "evaluations".
@@ -33,6 +44,7 @@ class Progress {
   std::string what() const;  // "12.5 s simulated", "40 evaluations"
 
   Mode mode_;
+  ProgressObserver observer_;
   std::chrono::duration<double> interval_;
   std::string label_, unit_;
   double total_ = 0.0;

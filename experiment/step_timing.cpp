@@ -10,6 +10,7 @@
 
 #include "core/error.hpp"
 #include "core/sim/run_metrics.hpp"
+#include "experiment/provenance.hpp"
 
 namespace thetad {
 
@@ -281,6 +282,16 @@ nlohmann::ordered_json to_json(const StepTimingReport& report) {
                                 {"verdict", verdict_name(t.verdict)},
                                 {"real_time_capable", t.verdict == RealTimeVerdict::capable}});
   }
+  return j;
+}
+
+nlohmann::ordered_json bench_json(const Flight& flight, const RecordedSamples& samples, const StepTimingReport& report) {
+  nlohmann::ordered_json j = to_json(report);
+  Provenance provenance = flight.provenance();
+  stamp_host_and_time(provenance);
+  j["recorded_with"] = samples.recorded_with;
+  j["recording_diverged"] = samples.diverged;
+  j["provenance"] = to_json(provenance);
   return j;
 }
 

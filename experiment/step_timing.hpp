@@ -102,4 +102,8 @@ StepTimingReport time_steps(std::vector<PreparedController>& controllers, const 
 std::string step_timing_table(const StepTimingReport& report);
 nlohmann::ordered_json to_json(const StepTimingReport& report);
 
+// bench.json: the report with the recording (who flew it, whether it diverged) and the flight's
+// provenance stamped with the host and the time.
+nlohmann::ordered_json bench_json(const Flight& flight, const RecordedSamples& samples, const StepTimingReport& report);
+
 }  // namespace thetad

@@ -1,6 +1,7 @@
 #include "optimal/optimal_control.hpp"
 
 #include <algorithm>
+#include <exception>
 #include <string>
 #include <vector>
 
@@ -163,8 +164,20 @@ class ShootingNlp final : public Ipopt::TNLP {
                              Ipopt::Number, Ipopt::Index, const Ipopt::IpoptData*,
                              Ipopt::IpoptCalculatedQuantities*) override {
     iterations_ = iter;
-    if (settings_.progress) settings_.progress(iter, obj_value, inf_pr);
+    if (!settings_.progress) return true;
+    // What progress throws (a Ctrl-C from Python) stops Ipopt as a user's stop and is thrown
+    // again once Ipopt has returned: an exception must not cross Ipopt's frames.
+    try {
+      settings_.progress(iter, obj_value, inf_pr);
+    } catch (...) {
+      stopped_by_ = std::current_exception();
+      return false;
+    }
     return true;
+  }
+
+  void rethrow_stop() const {
+    if (stopped_by_) std::rethrow_exception(stopped_by_);
   }
 
   void finalize_solution(Ipopt::SolverReturn, Ipopt::Index n, const Ipopt::Number* x, const Ipopt::Number*,
@@ -224,6 +237,7 @@ class ShootingNlp final : public Ipopt::TNLP {
   bool have_values_ = false, have_derivatives_ = false;
   std::vector<double> solution_;
   int iterations_ = 0;
+  std::exception_ptr stopped_by_;
 };
 
 void check_shape(const char* what, const Eigen::MatrixXd& matrix, Eigen::Index rows, Eigen::Index cols) {
@@ -283,6 +297,7 @@ OptimalControlSolution solve_optimal_control(const OptimalControlProblem& proble
   Ipopt::SmartPtr<ShootingNlp> nlp = new ShootingNlp(problem, start, settings);
   OptimalControlSolution solution;
   solution.outcome = solve_with_ipopt(*nlp, settings.ipopt);
+  nlp->rethrow_stop();
   solution.iterations = nlp->iterations();
   if (nlp->solution().empty()) {
     throw Error("optimal control: Ipopt stopped before its first iterate (status " + solution.outcome.status +

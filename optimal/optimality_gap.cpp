@@ -252,6 +252,11 @@ OptimalityGap optimality_gap(const Flight& flight, std::vector<PreparedControlle
                    [&](const PreparedController& c) { return c.spec.label == options.warm_start; })) {
     throw Error("optimality gap: the warm start " + options.warm_start + " is none of the controllers flown");
   }
+  for (const auto& controller : controllers) {
+    if (controller.spec.label.starts_with("optimal"))
+      throw Error("optimality gap: labels starting 'optimal' name the optima; label the controller '" +
+                  controller.spec.label + "' otherwise");
+  }
   for (auto& controller : controllers) gap.flights.push_back(flight.fly(controller, progress));
 
   for (const auto& run : gap.flights) {

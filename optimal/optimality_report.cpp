@@ -2,6 +2,9 @@
 
 #include <cmath>
 
+#include "core/atomic_file.hpp"
+#include "core/error.hpp"
+#include "experiment/comparison.hpp"
 #include "experiment/provenance.hpp"
 
 namespace thetad {
@@ -12,16 +15,17 @@ nlohmann::ordered_json number_or_null(double value) {
   return std::isfinite(value) ? nlohmann::ordered_json(value) : nlohmann::ordered_json(nullptr);
 }
 
-nlohmann::ordered_json solve_json(const SolvedOptimum& solved, const RunFiles& files) {
+nlohmann::ordered_json solve_json(const SolvedOptimum& solved, const RunFiles* files) {
   const OptimalControlSolution& solution = solved.solution;
-  return {{"label", solved.run.spec.label},
+  nlohmann::ordered_json solve = {{"label", solved.run.spec.label},
           {"ipopt_status", solution.outcome.status},
           {"ipopt_converged", solution.outcome.converged},
           {"ipopt_iterations", solution.iterations},
           {"max_defect", solution.constraint_violation},
           {"cost", solved.run.summary.cost},
-          {"cost_dev", number_or_null(solved.run.summary.cost_dev.value_or(NAN))},
-          {"result", files.json.filename().string()}};
+          {"cost_dev", number_or_null(solved.run.summary.cost_dev.value_or(NAN))}};
+  if (files) solve["result"] = files->json.filename().string();
+  return solve;
 }
 
 }  // namespace
@@ -58,11 +62,12 @@ nlohmann::ordered_json optimality_json(const Flight& flight, const OptimalityGap
   const std::string cost = cost_name(gap.cost);
   nlohmann::ordered_json optima = nlohmann::ordered_json::array();
   std::size_t file = gap.flights.size();
+  const auto next_files = [&files, &file]() { return files.empty() ? nullptr : &files.at(file++); };
   for (const auto& optimum : gap.optima) {
     nlohmann::ordered_json entry = {{"from", optimum.from}, {"intervals", optimum.problem.intervals}};
-    entry["optimum"] = solve_json(optimum.optimum, files.at(file++));
+    entry["optimum"] = solve_json(optimum.optimum, next_files());
     if (optimum.unbounded) {
-      entry["unbounded"] = solve_json(*optimum.unbounded, files.at(file++));
+      entry["unbounded"] = solve_json(*optimum.unbounded, next_files());
       entry["bounded_minus_unbounded"] = optimum.cost(gap.cost) - optimum.unbounded_cost(gap.cost);
     }
     optima.push_back(entry);
@@ -104,6 +109,23 @@ nlohmann::ordered_json optimality_json(const Flight& flight, const OptimalityGap
           {"optima", optima},
           {"controllers", controllers},
           {"provenance", to_json(gap.optima.front().optimum.run.provenance)}};
+}
+
+nlohmann::ordered_json write_optimality(const Flight& flight, const OptimalityGap& gap, const OptimalityOptions& options,
+                                        const std::filesystem::path& out) {
+  const auto comparison_file = out / "comparison.json", optimality_file = out / "optimality.json";
+  for (const auto& stale : {comparison_file, optimality_file}) {
+    std::error_code error;
+    std::filesystem::remove(stale, error);
+    if (error) throw Error("cannot remove the old " + stale.string() + ": " + error.message());
+  }
+  const std::vector<RunResult> runs = optimality_runs(gap);
+  std::vector<RunFiles> files;
+  for (const auto& run : runs) files.push_back(write_run_files(run, out));
+  nlohmann::ordered_json report = optimality_json(flight, gap, options, files);
+  write_file_atomically(comparison_file, comparison_json(flight, runs, files).dump(2) + "\n");
+  write_file_atomically(optimality_file, report.dump(2) + "\n");
+  return report;
 }
 
 }  // namespace thetad

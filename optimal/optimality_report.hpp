@@ -1,5 +1,6 @@
 #pragma once
 
+#include <filesystem>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -18,9 +19,15 @@ std::vector<RunResult> optimality_runs(const OptimalityGap& gap);
 // optimality.json (kOptimalityFormat; docs/optimality.md): the segment, the cost minimized, the
 // bounds, per optimum its solves (Ipopt's status, iterations, largest defect, J and J_dev, result
 // file), per controller its cost over the segment and its gaps. `files` are those of
-// optimality_runs(gap), in order.
+// optimality_runs(gap), in order; empty: nothing was written, and the solves name no file.
 nlohmann::ordered_json optimality_json(const Flight& flight, const OptimalityGap& gap, const OptimalityOptions& options,
                                        const std::vector<RunFiles>& files);
+
+// What `thetad optimal` writes into `out` (prepared by the caller, prepare_output_folder): the
+// result files of optimality_runs(gap), comparison.json and optimality.json, the latter two
+// removed first so that a failure leaves none of a previous run. Returns optimality.json's content.
+nlohmann::ordered_json write_optimality(const Flight& flight, const OptimalityGap& gap, const OptimalityOptions& options,
+                                        const std::filesystem::path& out);
 
 // Whether every solve converged.
 bool optimality_converged(const OptimalityGap& gap);

@@ -13,4 +13,8 @@ PYBIND11_MODULE(_thetad, module) {
   thetad::python::bind_model(module);
   thetad::python::bind_controllers(module);
   thetad::python::bind_flights(module);
+  thetad::python::bind_bench(module);
+  thetad::python::bind_optimal(module);
+  thetad::python::bind_campaigns(module);
+  thetad::python::bind_figures(module);
 }

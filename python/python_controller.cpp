@@ -19,7 +19,7 @@ std::string describe(const py::error_already_set& error) {
 
 // A Ctrl-C that a controller's Python code received (the signal is handled where Python runs)
 // would end the run as failed and be lost: it is raised again for the front end, which checks for
-// signals once the flight has ended (FlightObserver::finished). Last, after every other call into
+// signals once the flight has ended (TaskObserver::finished). Last, after every other call into
 // Python: the interpreter may check for signals inside one and raise it there already.
 void pass_on_interrupt(const py::error_already_set& error) {
   if (error.matches(PyExc_KeyboardInterrupt)) PyErr_SetInterrupt();

@@ -40,15 +40,23 @@ FIGURES = [
 PAIRED = ["rms_error_m", "max_error_m", "cost_dev", "cost"]
 
 
+# Below this many paired draws a percentile bootstrap interval is too rough to lean on: said beside it.
+SMALL_SAMPLE = 10
+
+
+class ReportError(Exception):
+    """What stops a report: the message names the database and the reason."""
+
+
 def read_campaign(database):
     with sqlite3.connect(f"file:{database}?mode=ro", uri=True) as connection:
         meta = dict(connection.execute("SELECT key, value FROM meta").fetchall())
         if meta.get("format") != FORMAT:
-            raise SystemExit(f"{database}: not a thetad campaign database ({FORMAT})")
+            raise ReportError(f"{database}: not a thetad campaign database ({FORMAT})")
         version = meta.get("format_version", "1")
         if version not in FORMAT_VERSIONS:
-            raise SystemExit(f"{database}: a campaign database of format_version {version}, written by another "
-                             f"thetad; this report reads versions {', '.join(FORMAT_VERSIONS)}: run the campaign anew")
+            raise ReportError(f"{database}: a campaign database of format_version {version}, written by another "
+                              f"thetad; this report reads versions {', '.join(FORMAT_VERSIONS)}: run the campaign anew")
         runs = pd.read_sql("SELECT * FROM runs ORDER BY run_index", connection)
     return meta, runs
 
@@ -122,7 +130,10 @@ def sentence(row):
             f"(a/b - 1 = {row['median'] * 100:+.1f} %, 95 % CI {row['low'] * 100:+.1f} to {row['high'] * 100:+.1f} %)")
     if row["low"] <= 0.0 <= row["high"]:
         text += " (the interval includes 0: no clear difference)"
-    return text + f", median over {row['pairs']} paired draws"
+    text += f", median over {row['pairs']} paired draws"
+    if row["pairs"] < SMALL_SAMPLE:
+        text += f" (fewer than {SMALL_SAMPLE}: the interval is rough, fly more draws before leaning on it)"
+    return text
 
 
 def markdown(meta, per_controller, paired, seed, resamples):
@@ -163,6 +174,42 @@ def write_atomically(path, text):
     os.replace(partial, path)
 
 
+def build_report(database, seed=1, resamples=2000):
+    """The report of a campaign database: its meta table, its runs (a DataFrame, one row per run,
+    each (cell, scenario) a cell), the per-controller rows, the paired rows and report.json's
+    content without the figures."""
+    meta, runs = read_campaign(database)
+    if runs.empty:
+        raise ReportError(f"{database}: no runs stored yet")
+    controllers = json.loads(meta["controllers"])
+    runs, swept = by_scenario(runs, json.loads(meta["swept"]))
+    per_controller = controller_rows(runs, controllers, swept)
+    paired = paired_rows(runs, controllers, swept, seed, resamples)
+    for row in paired:
+        row["sentence"] = sentence(row)
+    report = {"format": "thetad-campaign-report-1", "campaign": meta["campaign_name"],
+              "campaign_sha256": meta["campaign_sha256"], "runs_stored": int(len(runs)),
+              "run_count": int(meta["run_count"]), "provenance": json.loads(meta["provenance"]),
+              "statistics": {"wilson_confidence": 0.95, "quantile_method": campaign_stats.QUANTILE_METHOD,
+                             "bootstrap": {"method": "percentile", "resamples": resamples, "seed": seed},
+                             "small_sample_pairs": SMALL_SAMPLE},
+              "controllers": per_controller, "paired": paired}
+    return meta, runs, swept, report
+
+
+def write_report(meta, runs, swept, report, out):
+    """Writes report.md, report.json and the figures into `out`; returns the figures' files."""
+    os.makedirs(out, exist_ok=True)
+    controllers = json.loads(meta["controllers"])
+    figures = plot_campaign.draw_figures(runs, report["controllers"], controllers, swept, out)
+    report["figures"] = figures
+    statistics = report["statistics"]["bootstrap"]
+    write_atomically(os.path.join(out, "report.json"), json.dumps(report, indent=1) + "\n")
+    write_atomically(os.path.join(out, "report.md"), markdown(meta, report["controllers"], report["paired"],
+                                                             statistics["seed"], statistics["resamples"]))
+    return figures
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("database")
@@ -170,26 +217,11 @@ def main():
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--resamples", type=int, default=2000)
     args = parser.parse_args()
-    meta, runs = read_campaign(args.database)
-    if runs.empty:
-        raise SystemExit(f"{args.database}: no runs stored yet")
-    controllers = json.loads(meta["controllers"])
-    runs, swept = by_scenario(runs, json.loads(meta["swept"]))
-    per_controller = controller_rows(runs, controllers, swept)
-    paired = paired_rows(runs, controllers, swept, args.seed, args.resamples)
-    for row in paired:
-        row["sentence"] = sentence(row)
-    os.makedirs(args.out, exist_ok=True)
-    report = {"format": "thetad-campaign-report-1", "campaign": meta["campaign_name"],
-              "campaign_sha256": meta["campaign_sha256"], "runs_stored": int(len(runs)),
-              "run_count": int(meta["run_count"]), "provenance": json.loads(meta["provenance"]),
-              "statistics": {"wilson_confidence": 0.95, "quantile_method": campaign_stats.QUANTILE_METHOD,
-                             "bootstrap": {"method": "percentile", "resamples": args.resamples, "seed": args.seed}},
-              "controllers": per_controller, "paired": paired}
-    figures = plot_campaign.draw_figures(runs, per_controller, controllers, swept, args.out)
-    report["figures"] = figures
-    write_atomically(os.path.join(args.out, "report.json"), json.dumps(report, indent=1) + "\n")
-    write_atomically(os.path.join(args.out, "report.md"), markdown(meta, per_controller, paired, args.seed, args.resamples))
+    try:
+        meta, runs, swept, report = build_report(args.database, args.seed, args.resamples)
+    except ReportError as error:
+        raise SystemExit(str(error)) from None
+    figures = write_report(meta, runs, swept, report, args.out)
     print(f"wrote report.md, report.json and {len(figures)} figures to {args.out}")
 
 

@@ -25,8 +25,10 @@ def wilson_interval(successes, trials, confidence=0.95):
 
 
 def summary(values):
-    """Mean, median, p90, p99 and max of `values` (NaN for an empty sample)."""
+    """Mean, median, p90, p99 and max of `values` (NaN for an empty sample); NULL values (a figure
+    the run does not have: no timing, no J_dev) are not part of the sample."""
     values = np.asarray(values, dtype=float)
+    values = values[~np.isnan(values)]
     if values.size == 0:
         return {"n": 0, "mean": float("nan"), **{k: float("nan") for k in SUMMARY_QUANTILES}, "max": float("nan")}
     quantiles = np.quantile(values, list(SUMMARY_QUANTILES.values()), method=QUANTILE_METHOD)

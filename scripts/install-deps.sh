@@ -14,7 +14,7 @@ packages=(
   libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libssl-dev
   python3-matplotlib python3-scipy python3-mpmath
   python3-dev pybind11-dev python3-numpy python3-pandas python3-pytest python3-statsmodels
-  jupyter-nbconvert python3-nbformat python3-ipykernel
+  jupyter-nbconvert python3-nbformat python3-ipykernel python3-tqdm
   libsqlite3-dev libopenmpi-dev openmpi-bin
   strace
 )

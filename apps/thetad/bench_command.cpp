@@ -5,7 +5,6 @@
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "experiment/controller_spec.hpp"
-#include "experiment/provenance.hpp"
 #include "experiment/run_files.hpp"
 
 namespace thetad::app {
@@ -59,13 +58,7 @@ int run_bench(const BenchArguments& arguments) {
               flight.settings().duration, samples.recorded_with.c_str());
   std::fputs(step_timing_table(report).c_str(), stdout);
   if (!options.out.empty()) {
-    nlohmann::ordered_json j = to_json(report);
-    Provenance provenance = flight.provenance();
-    stamp_host_and_time(provenance);
-    j["recorded_with"] = samples.recorded_with;
-    j["recording_diverged"] = samples.diverged;
-    j["provenance"] = to_json(provenance);
-    write_file_atomically(options.out, j.dump(2) + "\n");
+    write_file_atomically(options.out, bench_json(flight, samples, report).dump(2) + "\n");
     std::printf("Wrote %s.\n", options.out.c_str());
   }
   if (samples.diverged.empty()) return kExitCompleted;

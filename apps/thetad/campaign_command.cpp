@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <thread>
 
-#include "apps/thetad/python_script.hpp"
+#include "experiment/python_script.hpp"
 #include "campaigns/campaign.hpp"
 #include "campaigns/campaign_merge.hpp"
 #include "campaigns/campaign_runner.hpp"

@@ -3,9 +3,6 @@
 #include <cstdio>
 
 #include "apps/thetad/run_command.hpp"
-#include "core/atomic_file.hpp"
-#include "core/error.hpp"
-#include "experiment/comparison.hpp"
 #include "experiment/controller_spec.hpp"
 #include "experiment/run_files.hpp"
 #include "optimal/optimality_report.hpp"
@@ -123,28 +120,15 @@ int run_optimal(const OptimalArguments& arguments) {
   std::vector<PreparedController> controllers;
   for (const auto& spec : parse_controller_specs(arguments.controllers, arguments.settings))
     controllers.push_back(flight.prepare(spec));
-  for (const auto& controller : controllers) {
-    if (controller.spec.label.starts_with("optimal"))
-      throw Error("thetad optimal: labels starting 'optimal' name the optima; label the controller otherwise");
-  }
   prepare_output_folder(arguments.out);
-  const auto comparison_file = arguments.out / "comparison.json", optimality_file = arguments.out / "optimality.json";
-  for (const auto& stale : {comparison_file, optimality_file}) {
-    std::error_code error;
-    std::filesystem::remove(stale, error);
-    if (error) throw Error("cannot remove the old " + stale.string() + ": " + error.message());
-  }
 
   Progress progress(Progress::mode_for_stderr(arguments.quiet));
   const OptimalityGap gap = optimality_gap(flight, controllers, options, &progress);
-  const std::vector<RunResult> runs = optimality_runs(gap);
-  std::vector<RunFiles> files;
-  for (const auto& run : runs) files.push_back(write_run_files(run, arguments.out));
+  write_optimality(flight, gap, options, arguments.out);
   print_gaps(flight, gap, options);
-  write_file_atomically(comparison_file, comparison_json(flight, runs, files).dump(2) + "\n");
-  write_file_atomically(optimality_file, optimality_json(flight, gap, options, files).dump(2) + "\n");
-  std::printf("Wrote %s, %s and the result files of each controller and optimum in %s.\n", optimality_file.c_str(),
-              comparison_file.c_str(), arguments.out.c_str());
+  std::printf("Wrote %s, %s and the result files of each controller and optimum in %s.\n",
+              (arguments.out / "optimality.json").c_str(), (arguments.out / "comparison.json").c_str(),
+              arguments.out.c_str());
   return optimality_converged(gap) && unbounded_at_most_bounded(gap) ? kExitCompleted : kExitDiverged;
 }
 

@@ -1,5 +1,5 @@
 """A flight from Python stops at Ctrl-C and reports its progress. The flight runs with the GIL
-released; its observer (python/flight_observer.cpp) takes the GIL every 50 ms of wall time to check
+released; its observer (python/task_observer.cpp) takes the GIL every 50 ms of wall time to check
 for signals and calls the progress callback at most 10 times a second."""
 
 import os
@@ -85,7 +85,7 @@ def test_an_exception_in_progress_stops_the_flight():
     with pytest.raises(RuntimeError, match="stop at"):
         thetad.run("scenario-1", "theta-d", duration=3600.0, summary_only=True, timing=False, progress=progress)
     assert time.monotonic() - started < 10.0
-    with pytest.raises(TypeError, match="progress: expected None or a callable"):
+    with pytest.raises(TypeError, match=r"progress: expected None, True \(a bar\) or a callable"):
         thetad.run("scenario-1", "theta-d", duration=0.1, progress=3)
 
 

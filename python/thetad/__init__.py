@@ -1,8 +1,9 @@
 """thetad from Python: the θ–D, SDRE and LQR controllers on the X-Cell helicopter model, at C++ speed.
 
 The numerics (care, lqr, dare, dlqr, lyap), the model (Helicopter), the registered controllers (controller,
-controllers), controllers written in Python (subclasses of Controller) and flights (run, compare)
-come from the C++ library through the extension module thetad._thetad. docs/python.md is the guide.
+controllers), controllers written in Python (subclasses of Controller), flights (run, compare) and the
+workflows (bench, optimal, campaign_run) come from the C++ library through the extension module
+thetad._thetad; plot and campaign_report draw with the shipped scripts. docs/python.md is the guide.
 """
 
 import os as _os
@@ -30,11 +31,14 @@ from ._thetad import (  # noqa: E402  (after the data folder is known)
     Error,
     Helicopter,
     Linearization,
+    Optimality,
     Reference,
     RegisteredController,
     RunResult,
     Trim,
     __version__,
+    bench,
+    campaign_run,
     care,
     compare,
     comparison_table,
@@ -46,13 +50,18 @@ from ._thetad import (  # noqa: E402  (after the data folder is known)
     linearize,
     lqr,
     lyap,
+    optimal,
     run,
     state_names,
     uncertainty_draw,
 )
 
+from .campaigns import CampaignReport, campaign_report  # noqa: E402
+from .figures import plot  # noqa: E402
+
 __all__ = [
-    "CareResult", "Controller", "DareResult", "DesignDefaults", "Error", "Helicopter", "Linearization", "Reference",
-    "RegisteredController", "RunResult", "Trim", "care", "compare", "comparison_table", "controller", "controllers",
-    "dare", "dlqr", "input_names", "linearize", "lqr", "lyap", "run", "state_names", "uncertainty_draw",
+    "CampaignReport", "CareResult", "Controller", "DareResult", "DesignDefaults", "Error", "Helicopter", "Linearization",
+    "Optimality", "Reference", "RegisteredController", "RunResult", "Trim", "bench", "campaign_report", "campaign_run",
+    "care", "compare", "comparison_table", "controller", "controllers", "dare", "dlqr", "input_names", "linearize",
+    "lqr", "lyap", "optimal", "plot", "run", "state_names", "uncertainty_draw",
 ]

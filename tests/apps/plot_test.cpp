@@ -132,7 +132,7 @@ TEST_F(Plot, DrawsPdfOnRequest) {
 TEST_F(Plot, UnknownBaselineIsAClearError) {
   const Output output = plot("--baseline nobody");
   EXPECT_EQ(output.status, 1);
-  EXPECT_THAT(output.err, HasSubstr("--baseline nobody: no run of " + (dir_ / "runs").string() +
+  EXPECT_THAT(output.err, HasSubstr("baseline nobody: no run of " + (dir_ / "runs").string() +
                                     " has that label (runs: lqr example-pid)"));
   expect_nothing_written();
 }

@@ -1,4 +1,4 @@
-#include "apps/thetad/python_script.hpp"
+#include "experiment/python_script.hpp"
 
 #include <fcntl.h>
 #include <spawn.h>
@@ -14,7 +14,7 @@
 
 extern char** environ;
 
-namespace thetad::app {
+namespace thetad {
 
 namespace fs = std::filesystem;
 
@@ -66,4 +66,4 @@ int run_python_script(const fs::path& script, const std::vector<std::string>& ar
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
-}  // namespace thetad::app
+}  // namespace thetad

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-namespace thetad::app {
+namespace thetad {
 
 // Debian's interpreter (/usr/bin/python3: the one that sees python3-matplotlib, pandas and scipy,
 // whatever python3 is first on PATH), or $THETAD_PYTHON.
@@ -19,4 +19,4 @@ std::filesystem::path shipped_script(const std::string& name);
 int run_python_script(const std::filesystem::path& script, const std::vector<std::string>& arguments,
                       const std::filesystem::path& log = {});
 
-}  // namespace thetad::app
+}  // namespace thetad

@@ -1,0 +1,76 @@
+#include "python/entries.hpp"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "python/python_controller.hpp"
+
+namespace thetad::python {
+
+RunControls run_controls(const py::kwargs& keywords) {
+  RunControls controls;
+  const auto flag = [](py::handle value) { return value.cast<bool>(); };
+  for (const auto& [key, value] : keywords) {
+    const std::string name = key.cast<std::string>();
+    if (name == "seed") controls.seed = value.cast<std::uint64_t>();
+    else if (name == "duration") controls.duration = value.cast<double>();
+    else if (name == "dt") controls.dt = value.cast<double>();
+    else if (name == "log_every") controls.log_every = value.cast<int>();
+    else if (name == "summary_only") controls.summary_only = flag(value);
+    else if (name == "timing") controls.timing = flag(value);
+    else if (name == "ideal") controls.ideal = flag(value);
+    else if (name == "parameter_uncertainty") controls.parameter_uncertainty = flag(value);
+    else if (name == "wind_gust") controls.wind_gust = flag(value);
+    else if (name == "measurement_noise") controls.measurement_noise = flag(value);
+    else if (name == "actuator_noise") controls.actuator_noise = flag(value);
+    else if (name == "wind_noise") controls.wind_noise = flag(value);
+    else if (name == "induced_velocity_noise") controls.induced_velocity_noise = flag(value);
+    else if (name == "actuator_limits") controls.actuator_limits = flag(value);
+    else if (name == "anti_windup") controls.anti_windup = flag(value);
+    else
+      throw py::type_error("unknown run control '" + name +
+                           "' (seed, duration, dt, log_every, summary_only, timing, ideal, parameter_uncertainty, "
+                           "wind_gust, measurement_noise, actuator_noise, wind_noise, induced_velocity_noise, actuator_limits, anti_windup)");
+  }
+  return controls;
+}
+
+Entry entry_of(py::handle controller) {
+  Entry entry;
+  if (py::isinstance<py::str>(controller)) {
+    entry.spec = parse_controller_spec(controller.cast<std::string>());
+  } else if (py::isinstance<RegisteredController>(controller)) {
+    entry.spec = controller.cast<const RegisteredController&>().spec();
+  } else if (py::isinstance<Controller>(controller)) {
+    auto borrowed = std::make_unique<BorrowedController>(py::reinterpret_borrow<py::object>(controller));
+    const std::string type = py::str(py::type::of(controller).attr("__qualname__")).cast<std::string>();
+    const std::string module = py::str(py::type::of(controller).attr("__module__")).cast<std::string>();
+    ControllerSpec spec{borrowed->name(), "python:" + type, {}, {}};
+    entry.python = PreparedController{spec, std::move(borrowed), {}, "python class " + module + "." + type};
+  } else {
+    throw py::type_error("controller: expected a registered controller's name (str), thetad.controller(...) or a "
+                         "thetad.Controller subclass instance, got " +
+                         py::str(py::type::of(controller).attr("__name__")).cast<std::string>());
+  }
+  return entry;
+}
+
+std::vector<Entry> entries_of(const py::sequence& controllers) {
+  std::vector<Entry> entries;
+  std::vector<ControllerSpec> specs;
+  for (const py::handle controller : controllers) {
+    entries.push_back(entry_of(controller));
+    specs.push_back(spec_of(entries.back()));
+  }
+  check_labels(specs);
+  return entries;
+}
+
+ControllerSpec& spec_of(Entry& entry) { return entry.spec ? *entry.spec : entry.python->spec; }
+
+PreparedController prepare(const Flight& flight, Entry& entry) {
+  return entry.spec ? flight.prepare(*entry.spec) : std::move(*entry.python);
+}
+
+}  // namespace thetad::python

@@ -1,0 +1,41 @@
+#pragma once
+
+// What every flight-flying binding (run, compare, bench, optimal) takes from its caller: the run
+// controls as keywords and the controllers as names, specs or Python objects.
+
+#include <optional>
+
+#include <pybind11/pybind11.h>
+
+#include "experiment/controller_spec.hpp"
+#include "experiment/flight.hpp"
+#include "experiment/run_controls.hpp"
+
+namespace thetad::python {
+
+namespace py = pybind11;
+
+// The run controls of docs/python.md, as keywords: the command line's --seed, --duration, ...
+// TypeError for an unknown one.
+RunControls run_controls(const py::kwargs& keywords);
+
+// One controller of a run as the caller gave it: a spec (a name, or thetad.controller()'s, built
+// again for the flight), or a Python controller flown as the object itself.
+struct Entry {
+  std::optional<ControllerSpec> spec;
+  std::optional<PreparedController> python;
+};
+
+// A registered controller's name (str), thetad.controller(...) or a thetad.Controller subclass
+// instance; TypeError for anything else.
+Entry entry_of(py::handle controller);
+// The entries of a sequence, their labels checked to differ.
+std::vector<Entry> entries_of(const py::sequence& controllers);
+
+ControllerSpec& spec_of(Entry& entry);
+
+// The entry's controller for `flight`: built from its spec, or the Python object itself (moved out
+// of the entry).
+PreparedController prepare(const Flight& flight, Entry& entry);
+
+}  // namespace thetad::python
