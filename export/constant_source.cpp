@@ -34,6 +34,15 @@ std::string exact_literal(double value) {
   return text;
 }
 
+std::vector<double> row_major(const Eigen::MatrixXd& matrix) {
+  std::vector<double> values;
+  for (Eigen::Index r = 0; r < matrix.rows(); ++r)
+    for (Eigen::Index c = 0; c < matrix.cols(); ++c) values.push_back(matrix(r, c));
+  return values;
+}
+
+std::vector<double> entries(const Eigen::VectorXd& vector) { return {vector.data(), vector.data() + vector.size()}; }
+
 std::string literal_list(const std::vector<double>& values, const char* wrap_open, const char* wrap_close,
                          int per_line) {
   std::string s;

@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Core>
+
 namespace thetad {
 
 // `value` as a C++ literal that reads back as the same double: hexadecimal floating (%a), or
@@ -38,6 +40,10 @@ class DesignSource {
   std::uint64_t checksum_double_ = 0xcbf29ce484222325ull;     // FNV-1a offset basis
   std::uint64_t checksum_float_ = 0xcbf29ce484222325ull;
 };
+
+// A matrix's entries row by row, a vector's in order: the layout of the exported arrays.
+std::vector<double> row_major(const Eigen::MatrixXd& matrix);
+std::vector<double> entries(const Eigen::VectorXd& vector);
 
 // A vector's elements in C++ source, `per_line` to a line, for an initializer list.
 std::string literal_list(const std::vector<double>& values, const char* wrap_open, const char* wrap_close,
