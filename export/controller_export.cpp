@@ -88,13 +88,23 @@ std::vector<double> reference_row(const Reference& r) {
 // controller fed every sample in order from its reset, as the flight fed it.
 std::string check_data_of(const Flight& flight, PreparedController& prepared, const ExportedDesign& design,
                           const ExportCheckOptions& options, ExportedController& exported) {
-  const RecordedSamples samples = record_samples(flight, prepared);
+  RecordedSamples samples = record_samples(flight, prepared);
   exported.recording_diverged = samples.diverged;
   const std::unique_ptr<Controller> library = prepared.controller->clone();
   library->reset(flight.initial_state(), 0.0);
-  std::vector<Eigen::VectorXd> inputs(samples.size(), Eigen::VectorXd(design.initial_input.size()));
-  for (std::size_t i = 0; i < samples.size(); ++i)
-    library->control(samples.time[i], samples.measured[i], samples.reference[i], inputs[i]);
+  std::vector<Eigen::VectorXd> inputs;
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    inputs.emplace_back(design.initial_input.size());
+    try {
+      library->control(samples.time[i], samples.measured[i], samples.reference[i], inputs.back());
+    } catch (const Error&) {
+      // The controller failed where the flight ended: the check holds the samples before.
+      inputs.pop_back();
+      break;
+    }
+  }
+  if (inputs.empty()) throw Error("export: " + exported.label + " failed at the flight's first sample");
+  samples.time.resize(inputs.size());
 
   const std::vector<std::size_t> starts = segment_starts(samples.size(), options);
   const auto per = std::min(samples.size(), static_cast<std::size_t>(options.samples_per_segment));
