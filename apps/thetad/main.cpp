@@ -13,6 +13,7 @@
 #include "apps/thetad/demo_command.hpp"
 #include "apps/thetad/plot_command.hpp"
 #include "apps/thetad/design_lqr_command.hpp"
+#include "apps/thetad/export_command.hpp"
 #include "apps/thetad/weights_command.hpp"
 #include "apps/thetad/optimal_command.hpp"
 #include "apps/thetad/option_suggestion.hpp"
@@ -68,6 +69,8 @@ int main(int argc, char** argv) {
   auto* campaign = thetad::app::add_campaign_command(app, campaign_arguments);
   thetad::app::OptimalArguments optimal_arguments;
   auto* optimal = thetad::app::add_optimal_command(app, optimal_arguments);
+  thetad::app::ExportArguments export_arguments;
+  auto* export_command = thetad::app::add_export_command(app, export_arguments);
 
   try {
     app.parse(argc, argv);
@@ -90,6 +93,7 @@ int main(int argc, char** argv) {
     if (*bench) return thetad::app::run_bench(bench_arguments);
     if (*campaign) return thetad::app::run_campaign_command(campaign_arguments);
     if (*optimal) return thetad::app::run_optimal(optimal_arguments);
+    if (*export_command) return thetad::app::run_export(export_arguments);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "thetad: error: %s\n", thetad::escaped_utf8(e.what()).c_str());
     return 1;

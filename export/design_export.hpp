@@ -1,0 +1,32 @@
+#pragma once
+
+// The per-controller halves of `thetad export` (controller_export.cpp assembles the header): each
+// turns a designed controller into its constant data and the typed wrappers of its onboard step.
+
+#include <string>
+
+#include <Eigen/Core>
+
+#include "controllers/lqr.hpp"
+#include "controllers/theta_d.hpp"
+#include "export/constant_source.hpp"
+
+namespace thetad {
+
+struct ExportedDesign {
+  DesignSource data;        // the generated `template <class T> struct Design`
+  std::string step_file;    // the export/onboard/ file with its step
+  std::string wrappers;     // State<T>, reset(), step(), set_applied_input() over Design<T>
+  Eigen::MatrixXd input_weights;  // R, by which the check measures differences of u
+  Eigen::VectorXd initial_input;  // what the step applied before its first sample (reset())
+};
+
+// θ–D after reset() (its design: A0, g0, T0, Ac0 at the initial state): the step of
+// export/onboard/theta_d_step.hpp; `feedforward_velocity` when it flies the velocity error form.
+ExportedDesign theta_d_design(const ThetaDController& controller, bool feedforward_velocity);
+
+// The LQR with feedforward none: export/onboard/lqr_step.hpp with its gain and operating point;
+// `input_weights` is the R it was designed with.
+ExportedDesign lqr_design(const LqrController& controller, const Eigen::MatrixXd& input_weights);
+
+}  // namespace thetad
