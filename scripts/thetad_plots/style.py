@@ -31,6 +31,7 @@ import matplotlib
 
 matplotlib.use(os.environ.get("MPLBACKEND", "Agg"))
 import matplotlib.pyplot as plt  # noqa: E402  (the backend must be chosen first)
+from matplotlib.layout_engine import ConstrainedLayoutEngine  # noqa: E402
 
 from .results import PlotError  # noqa: E402
 
@@ -128,10 +129,15 @@ def save(fig, stem, formats, dpi=300):
     if unknown:
         raise ValueError(f"unknown figure format {', '.join(unknown)} (known: {', '.join(FORMATS)})")
     paths = []
-    for fmt in formats:
-        path = f"{stem}.{fmt}"
-        fig.savefig(path, dpi=dpi)
-        paths.append(path)
+    # A figure placed by hand (no layout engine) keeps none from one format to the next: saving
+    # tight, matplotlib 3.6 restores "no engine" as the style's default, constrained, which then
+    # warns that it has no grid to lay out.
+    constrained = isinstance(fig.get_layout_engine(), ConstrainedLayoutEngine)
+    with plt.rc_context({"figure.constrained_layout.use": constrained}):
+        for fmt in formats:
+            path = f"{stem}.{fmt}"
+            fig.savefig(path, dpi=dpi)
+            paths.append(path)
     plt.close(fig)
     return paths
 

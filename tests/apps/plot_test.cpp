@@ -19,6 +19,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 using thetad::testing::Output;
 std::string read(const fs::path& file) { return thetad::testing::read_text(file); }
@@ -93,6 +94,8 @@ class Plot : public ::testing::Test {
 TEST_F(Plot, DrawsEveryFigureAsValidPngAndSvg) {
   const Output output = plot();
   ASSERT_EQ(output.status, 0) << output.err;
+  // Two formats: the second once printed matplotlib's layout warning (the 3-D figure).
+  EXPECT_THAT(output.err, Not(HasSubstr("Warning"))) << output.err;
   for (const auto& figure : kFigures) {
     const std::string png = read(dir_ / "figures" / (figure + ".png"));
     const std::string svg = read(dir_ / "figures" / (figure + ".svg"));
