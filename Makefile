@@ -51,8 +51,8 @@ sanitize: deps
 # its figures (the paper's Figs. 2-9 with the controllers overlaid; see docs/reproduction.md).
 demo: program
 	$(BUILD_DIR)/apps/thetad demo --out $(OUT)
-	$(BUILD_DIR)/apps/thetad compare --scenario scenario-1 --controllers theta-d,sdre,lqr,lqr-scheduled --seed 1 --log-every 20 --out $(OUT)/scenario-1
-	$(BUILD_DIR)/apps/thetad plot --in $(OUT)/scenario-1 --out $(OUT)/scenario-1/figures
+	$(BUILD_DIR)/apps/thetad compare --scenario scenario-1 --controllers all --seed 1 --log-every 20 --out $(OUT)/scenario-1
+	$(BUILD_DIR)/apps/thetad plot --in $(OUT)/scenario-1 --out $(OUT)/scenario-1/figures --baseline theta-d
 
 # Benchmarks are built separately with -march=native (see docs/performance.md).
 bench: deps

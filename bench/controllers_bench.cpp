@@ -78,14 +78,6 @@ const Recording& recording() {
   return instance;
 }
 
-// Mean fixed-point passes per step, for the controllers that iterate.
-int passes_of(const thetad::Controller& controller) {
-  if (const auto* theta_d = dynamic_cast<const thetad::ThetaDController*>(&controller))
-    return theta_d->last_iterations();
-  if (const auto* sdre = dynamic_cast<const thetad::SdreController*>(&controller)) return sdre->last_iterations();
-  return 0;
-}
-
 // Times controller.control() on the recorded samples in order, from the second on.
 void time_steps(benchmark::State& state, thetad::Controller& controller) {
   const Recording& r = recording();
@@ -100,7 +92,7 @@ void time_steps(benchmark::State& state, thetad::Controller& controller) {
     controller.control(s.t, s.state, s.reference, u);
     benchmark::DoNotOptimize(u.data());
     benchmark::ClobberMemory();
-    passes += passes_of(controller);
+    passes += controller.last_iterations();
     if (++k == r.samples.size()) k = 0;
   }
   state.counters["passes"] = benchmark::Counter(passes, benchmark::Counter::kAvgIterations);

@@ -39,6 +39,7 @@ class FeedForwardController final : public Controller {
   // The inner controller's, of its decision variable v (docs/model.md §8.4).
   std::vector<CertificateColumn> certificate_columns() const override { return inner_->certificate_columns(); }
   void certificate_values(std::vector<double>& row) const override { inner_->certificate_values(row); }
+  int last_iterations() const override { return inner_->last_iterations(); }
 
   const Controller& inner() const { return *inner_; }
   const ErrorFormPlant& error_form() const { return *error_form_; }

@@ -89,7 +89,7 @@ class SdreController final : public Controller {
   // P of the last pass of the last control() (the last good one after a failure).
   const Eigen::MatrixXd& last_value_matrix() const { return P_; }
   // Fixed-point passes of the last control() and the max|Δu| of its last pass.
-  int last_iterations() const { return last_iterations_; }
+  int last_iterations() const override { return last_iterations_; }
   double last_input_change() const { return last_input_change_; }
   const SdreSettings& settings() const { return settings_; }
 

@@ -96,7 +96,7 @@ class ThetaDController final : public Controller {
   const Eigen::MatrixXd& Ac0() const { return Ac0_; }
   const Eigen::VectorXcd& closed_loop_eigenvalues() const { return Ac0_eigenvalues_; }
   // Fixed-point passes of the last control() and the max|Δu| of its last pass.
-  int last_iterations() const { return last_iterations_; }
+  int last_iterations() const override { return last_iterations_; }
   double last_input_change() const { return last_input_change_; }
   const ThetaDSettings& settings() const { return settings_; }
 

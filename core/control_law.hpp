@@ -89,6 +89,11 @@ class ControlLaw {
   // may allocate. A law that reports none keeps these defaults, and its log has no such columns.
   virtual std::vector<CertificateColumn> certificate_columns() const { return {}; }
   virtual void certificate_values(std::vector<double>& row) const { (void)row; }
+
+  // The iterations the last control() took (θ–D's and the SDRE's fixed-point passes): the work a
+  // step did, which `thetad bench` reports beside its time. A closed-form law keeps 0. Hot path: a
+  // plain read.
+  virtual int last_iterations() const { return 0; }
 };
 
 // Applies a fixed input whatever the state: open-loop runs and tests.

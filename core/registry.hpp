@@ -21,7 +21,7 @@ namespace thetad {
 //   3: SdcPlant's feed-forward hooks (bias_state, commanded_motion, trim_source) and
 //      ControllerContext's shared trims (docs/model.md §7.1).
 //   4: ControlLaw's certificate columns and values (docs/model.md §8.4).
-inline constexpr int kPluginInterfaceVersion = 4;
+inline constexpr int kPluginInterfaceVersion = 5;
 
 // Where the registrations made while one lives come from: a plug-in being loaded ("plug-in
 // /path/lib.so (sha256 ...)"); "built-in" outside one. Inside one a refused registration is kept

@@ -118,9 +118,23 @@ std::vector<ControllerSpec> parse_controller_specs(const std::vector<std::string
                                                    const std::filesystem::path& settings_file) {
   const YAML::Node settings = settings_file.empty() ? YAML::Node() : load_settings_file(settings_file);
   std::vector<ControllerSpec> specs;
-  for (const auto& text : texts) specs.push_back(parse_controller_spec(text, settings, settings_file.string()));
+  for (const auto& text : texts) {
+    if (text == kAllControllers) {
+      for (const auto& name : compared_controllers())
+        specs.push_back(parse_controller_spec(name, settings, settings_file.string()));
+    } else {
+      specs.push_back(parse_controller_spec(text, settings, settings_file.string()));
+    }
+  }
   check_labels(specs);
   return specs;
+}
+
+std::vector<std::string> compared_controllers() {
+  std::vector<std::string> names;
+  for (const auto& name : ControllerRegistry::instance().names())
+    if (!name.starts_with("example-")) names.push_back(name);
+  return names;
 }
 
 std::vector<ControllerSpec> load_controller_specs(const std::filesystem::path& file) {

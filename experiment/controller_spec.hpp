@@ -31,7 +31,15 @@ ControllerSpec parse_controller_spec(const std::string& text, const YAML::Node& 
                                      const std::string& fallback_source = {});
 
 // The specs `texts` (parse_controller_spec), those without a file of their own taking their block
-// from `settings_file` (empty: none); labels checked (check_labels).
+// from `settings_file` (empty: none); labels checked (check_labels). The text "all" stands for
+// compared_controllers(), in their order.
+inline constexpr const char* kAllControllers = "all";
+
+// Every registered controller a comparison flies (built-in or from a loaded plug-in) but the
+// examples, whose names start "example-": what "all controllers" means wherever a list has a
+// default (`thetad optimal`, the demo, `--controllers all`), in registration-name order.
+std::vector<std::string> compared_controllers();
+
 std::vector<ControllerSpec> parse_controller_specs(const std::vector<std::string>& texts,
                                                    const std::filesystem::path& settings_file = {});
 

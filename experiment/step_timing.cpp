@@ -34,6 +34,7 @@ class SampleRecorder final : public Controller {
     samples_->reference.push_back(reference);
     inner_->control(t, measured_state, reference, u);
   }
+  int last_iterations() const override { return inner_->last_iterations(); }
 
  private:
   std::unique_ptr<Controller> inner_;
@@ -82,10 +83,10 @@ Plan plan(std::size_t recorded, const StepTimingOptions& options) {
   return p;
 }
 
-// One pass of `controller` over the planned samples from a reset; the time of each timed call
-// when `times`.
+// One pass of `controller` over the planned samples from a reset; with `timing`, the time of each
+// timed call and its iterations (ControlLaw::last_iterations) added up.
 void pass(Controller& controller, const RecordedSamples& samples, const Plan& plan, const Eigen::VectorXd& x0,
-          Eigen::VectorXd& u, std::vector<double>* times, const std::string& label) {
+          Eigen::VectorXd& u, StepTiming* timing, const std::string& label) {
   controller.reset(x0, samples.time.front());
   for (const std::size_t first : plan.first) {
     for (std::size_t k = first; k < first + kSettleSamples + plan.per_segment; ++k) {
@@ -93,8 +94,11 @@ void pass(Controller& controller, const RecordedSamples& samples, const Plan& pl
         const auto start = std::chrono::steady_clock::now();
         controller.control(samples.time[k], samples.measured[k], samples.reference[k], u);
         const auto stop = std::chrono::steady_clock::now();
-        if (times && k >= first + kSettleSamples)
-          times->push_back(static_cast<double>(std::chrono::duration_cast<std::chrono::nanoseconds>(stop - start).count()));
+        if (timing && k >= first + kSettleSamples) {
+          timing->nanoseconds.push_back(
+              static_cast<double>(std::chrono::duration_cast<std::chrono::nanoseconds>(stop - start).count()));
+          timing->iterations_mean += controller.last_iterations();
+        }
       } catch (const Error& error) {
         throw Error("bench: " + label + " failed on the recorded sample at t = " + std::to_string(samples.time[k]) +
                     " s: " + error.what());
@@ -142,7 +146,7 @@ StepTimingReport time_steps(std::vector<PreparedController>& controllers, const 
   report.cpu = pin(options.cpu);
   Eigen::VectorXd u(input_dim);
   for (auto& prepared : controllers) {
-    report.controllers.push_back({prepared.spec.label, prepared.spec.controller, {}, 0, 0, 0, 0, 0, 0, 0,
+    report.controllers.push_back({prepared.spec.label, prepared.spec.controller, {}, 0, 0, 0, 0, 0, 0, 0, 0,
                                   RealTimeVerdict::not_capable});
     report.controllers.back().nanoseconds.reserve(report.samples * static_cast<std::size_t>(3 * options.repetitions));
   }
@@ -152,8 +156,7 @@ StepTimingReport time_steps(std::vector<PreparedController>& controllers, const 
   // Interleaved: repetition r of every controller before repetition r + 1 of any.
   const auto repeat = [&] {
     for (std::size_t c = 0; c < controllers.size(); ++c)
-      pass(*controllers[c].controller, samples, timed, initial_state, u, &report.controllers[c].nanoseconds,
-           controllers[c].spec.label);
+      pass(*controllers[c].controller, samples, timed, initial_state, u, &report.controllers[c], controllers[c].spec.label);
     ++report.repetitions;
   };
   while (report.repetitions < options.repetitions) repeat();
@@ -176,6 +179,7 @@ StepTimingReport time_steps(std::vector<PreparedController>& controllers, const 
     timing.p99 = sim::nearest_rank(sorted, 0.99);
     timing.max = sorted.back();
     timing.overruns = static_cast<std::size_t>(sorted.end() - std::upper_bound(sorted.begin(), sorted.end(), budget_ns));
+    timing.iterations_mean /= static_cast<double>(sorted.size());  // the sum, until here
     timing.verdict = real_time_verdict(timing.p99, static_cast<double>(timing.overruns) / static_cast<double>(sorted.size()),
                                        budget_ns);
   }
@@ -210,18 +214,19 @@ std::string step_timing_table(const StepTimingReport& report) {
   const double budget_us = report.options.budget_seconds * 1e6;
   std::string text;
   char line[320];
-  std::snprintf(line, sizeof line, "%-*s %10s %10s %10s %10s %10s %9s %9s  %s\n", w, "controller", "median us", "p10 us",
-                "p90 us", "p99 us", "max us", "budget", "overruns", "one core at the period");
+  std::snprintf(line, sizeof line, "%-*s %10s %10s %10s %10s %10s %9s %9s %6s  %s\n", w, "controller", "median us",
+                "p10 us", "p90 us", "p99 us", "max us", "budget", "overruns", "iters", "one core at the period");
   text += line;
   for (const auto& t : report.controllers) {
-    std::snprintf(line, sizeof line, "%-*s %10.2f %10.2f %10.2f %10.2f %10.2f %8.1f%% %9zu  %s\n", w, t.label.c_str(),
-                  t.median * 1e-3, t.p10 * 1e-3, t.p90 * 1e-3, t.p99 * 1e-3, t.max * 1e-3,
-                  100.0 * t.median * 1e-3 / budget_us, t.overruns, verdict_name(t.verdict));
+    std::snprintf(line, sizeof line, "%-*s %10.2f %10.2f %10.2f %10.2f %10.2f %8.1f%% %9zu %6.2f  %s\n", w,
+                  t.label.c_str(), t.median * 1e-3, t.p10 * 1e-3, t.p90 * 1e-3, t.p99 * 1e-3, t.max * 1e-3,
+                  100.0 * t.median * 1e-3 / budget_us, t.overruns, t.iterations_mean, verdict_name(t.verdict));
     text += line;
   }
   std::snprintf(line, sizeof line,
                 "%zu timed steps (%d runs of consecutive 1 kHz samples spread over the flight) x %d repetitions per "
-                "controller (interleaved, after %d warm-up pass%s), %s; budget: the %.3g ms controller period.\n",
+                "controller (interleaved, after %d warm-up pass%s), %s; budget: the %.3g ms controller period; iters: "
+                "the controller's iterations per step (fixed-point passes; 0: closed form).\n",
                 report.samples, report.options.segments, report.repetitions, report.options.warmup_passes,
                 report.options.warmup_passes == 1 ? "" : "es",
                 report.cpu >= 0 ? ("pinned to core " + std::to_string(report.cpu)).c_str() : "not pinned",
@@ -278,6 +283,7 @@ nlohmann::ordered_json to_json(const StepTimingReport& report) {
                                 {"max_ns", t.max},
                                 {"overruns", t.overruns},
                                 {"median_drift_ns", t.median_drift},
+                                {"iterations_mean", t.iterations_mean},
                                 {"budget_share_median", t.median * 1e-9 / report.options.budget_seconds},
                                 {"verdict", verdict_name(t.verdict)},
                                 {"real_time_capable", t.verdict == RealTimeVerdict::capable}});

@@ -73,6 +73,7 @@ struct StepTiming {
   double median = 0, p10 = 0, p90 = 0, p99 = 0, max = 0;  // ns
   std::size_t overruns = 0;          // calls over the budget
   double median_drift = 0;           // |median of the second half of the passes − of the first| (ns)
+  double iterations_mean = 0;        // ControlLaw::last_iterations() per timed call (0: closed form)
   RealTimeVerdict verdict = RealTimeVerdict::not_capable;
 };
 

@@ -11,6 +11,7 @@
 #include "controllers/registry.hpp"
 #include "core/helicopter/state.hpp"
 #include "experiment/controller_spec.hpp"
+#include "experiment/plugins.hpp"
 #include "experiment/result_json.hpp"
 #include "python/arrays.hpp"
 #include "python/bindings.hpp"
@@ -144,6 +145,16 @@ void bind_controllers(py::module_& module) {
     }
     return list;
   }, "The registered controllers: a dict per controller (name, description, origin)");
+
+  module.def(
+      "load_plugin", [](const std::string& library) { load_plugin(library); }, py::arg("library"),
+      "Loads a plug-in (a shared library built with thetad_add_plugin, docs/api.md): its controllers and plants "
+      "are then known to every function, as `thetad --plugin` makes them known to every command. Loading it "
+      "again does nothing. The plug-ins THETAD_PLUGIN_PATH names are loaded when thetad is imported.");
+  module.def(
+      "_load_plugins_from_environment", [] {
+        for (const auto& library : plugins_from_environment()) load_plugin(library);
+      });
 }
 
 }  // namespace thetad::python

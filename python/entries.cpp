@@ -57,11 +57,21 @@ Entry entry_of(py::handle controller) {
 }
 
 std::vector<Entry> entries_of(const py::sequence& controllers) {
+  if (py::isinstance<py::str>(controllers))
+    throw py::type_error("controllers: expected a list (['theta-d', 'sdre'] or ['all']), got the string '" +
+                         controllers.cast<std::string>() + "'");
   std::vector<Entry> entries;
   std::vector<ControllerSpec> specs;
-  for (const py::handle controller : controllers) {
+  const auto add = [&](py::handle controller) {
     entries.push_back(entry_of(controller));
     specs.push_back(spec_of(entries.back()));
+  };
+  for (const py::handle controller : controllers) {
+    if (py::isinstance<py::str>(controller) && controller.cast<std::string>() == kAllControllers) {
+      for (const auto& name : compared_controllers()) add(py::str(name));
+    } else {
+      add(controller);
+    }
   }
   check_labels(specs);
   return entries;

@@ -29,7 +29,7 @@ struct Entry {
 // A registered controller's name (str), thetad.controller(...) or a thetad.Controller subclass
 // instance; TypeError for anything else.
 Entry entry_of(py::handle controller);
-// The entries of a sequence, their labels checked to differ.
+// The entries of a sequence ("all": compared_controllers()), their labels checked to differ.
 std::vector<Entry> entries_of(const py::sequence& controllers);
 
 ControllerSpec& spec_of(Entry& entry);

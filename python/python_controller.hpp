@@ -56,6 +56,7 @@ class BorrowedController final : public Controller {
   std::vector<std::pair<std::string, double>> counters() const override { return target_->counters(); }
   std::vector<CertificateColumn> certificate_columns() const override { return target_->certificate_columns(); }
   void certificate_values(std::vector<double>& row) const override { target_->certificate_values(row); }
+  int last_iterations() const override { return target_->last_iterations(); }
   std::unique_ptr<Controller> clone() const override { return target_->clone(); }
 
  private:
@@ -82,6 +83,7 @@ class RegisteredController final : public Controller {
     return prepared_.controller->certificate_columns();
   }
   void certificate_values(std::vector<double>& row) const override { prepared_.controller->certificate_values(row); }
+  int last_iterations() const override { return prepared_.controller->last_iterations(); }
   std::unique_ptr<Controller> clone() const override;
 
  private:

@@ -18,7 +18,7 @@ CLI::App* add_bench_command(CLI::App& app, BenchArguments& arguments) {
   add_flight_options(*bench, arguments.flight, false, false);
   bench->get_option("--out")->description("JSON file for the figures (optional)");
   bench->add_option("--controllers", arguments.controllers,
-                    "Comma-separated NAME, LABEL=NAME or LABEL=NAME:SETTINGS.yaml; the first flies the recording")
+                    "Comma-separated NAME, LABEL=NAME or LABEL=NAME:SETTINGS.yaml, or all (every registered controller but the examples); the first flies the recording")
       ->required()
       ->delimiter(',');
   bench->add_option("--samples", arguments.timing.samples,

@@ -18,7 +18,8 @@ CLI::App* add_compare_command(CLI::App& app, CompareArguments& arguments) {
   add_flight_options(*compare, arguments.flight);
   compare->add_option("--controllers", arguments.controllers,
                       "Comma-separated NAME, LABEL=NAME or LABEL=NAME:SETTINGS.yaml "
-                      "(e.g. paper=theta-d,tuned=theta-d:out/tune/theta-d-tuned.yaml,sdre)")
+                      "(e.g. paper=theta-d,tuned=theta-d:out/tune/theta-d-tuned.yaml,sdre), or all (every registered "
+                      "controller but the examples)")
       ->delimiter(',');
   compare->add_option("--controllers-file", arguments.controllers_file,
                       "YAML file with a `controllers:` list of {label, controller, settings} (instead of --controllers)");

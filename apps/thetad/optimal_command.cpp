@@ -38,7 +38,7 @@ CLI::App* add_optimal_command(CLI::App& app, OptimalArguments& arguments) {
                       "Seconds the optimal input is held (a whole number of controller periods)")
       ->capture_default_str()
       ->check(CLI::Range(1e-6, 86400.0));
-  optimal->add_option("--controllers", arguments.controllers, "Comma-separated NAME, LABEL=NAME or LABEL=NAME:SETTINGS.yaml")
+  optimal->add_option("--controllers", arguments.controllers, "Comma-separated NAME, LABEL=NAME or LABEL=NAME:SETTINGS.yaml, or all (every registered controller but the examples)")
       ->delimiter(',')
       ->capture_default_str();
   optimal->add_option("--settings", arguments.settings, "Controller settings (YAML): a map from controller name to its settings block");

@@ -6,6 +6,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "experiment/controller_spec.hpp"
+
 namespace thetad::app {
 
 struct OptimalArguments {
@@ -15,7 +17,7 @@ struct OptimalArguments {
   double start = 0.0;
   double horizon = 0.0;
   double control_interval = 0.05;
-  std::vector<std::string> controllers{"theta-d", "sdre", "lqr", "lqr-scheduled"};
+  std::vector<std::string> controllers{kAllControllers};
   std::filesystem::path settings;
   std::string warm_start;
   int max_iterations = 1000;

@@ -7,6 +7,7 @@ thetad._thetad; plot and campaign_report draw with the shipped scripts. docs/pyt
 """
 
 import os as _os
+import sys as _sys
 
 from . import _layout
 
@@ -23,6 +24,10 @@ def _point_at_installed_data():
 
 _point_at_installed_data()
 
+# A plug-in resolves thetad's symbols against the module that loads it: the module's must be
+# global (Python loads extension modules RTLD_LOCAL), as the thetad program exports its own.
+_flags = _sys.getdlopenflags()
+_sys.setdlopenflags(_flags | _os.RTLD_GLOBAL)
 from ._thetad import (  # noqa: E402  (after the data folder is known)
     CareResult,
     Controller,
@@ -48,6 +53,7 @@ from ._thetad import (  # noqa: E402  (after the data folder is known)
     dlqr,
     input_names,
     linearize,
+    load_plugin,
     lqr,
     lyap,
     optimal,
@@ -56,6 +62,9 @@ from ._thetad import (  # noqa: E402  (after the data folder is known)
     uncertainty_draw,
 )
 
+_sys.setdlopenflags(_flags)
+_thetad._load_plugins_from_environment()
+
 from .campaigns import CampaignReport, campaign_report  # noqa: E402
 from .figures import plot  # noqa: E402
 
@@ -63,5 +72,5 @@ __all__ = [
     "CampaignReport", "CareResult", "Controller", "DareResult", "DesignDefaults", "Error", "Helicopter", "Linearization",
     "Optimality", "Reference", "RegisteredController", "RunResult", "Trim", "bench", "campaign_report", "campaign_run",
     "care", "compare", "comparison_table", "controller", "controllers", "dare", "dlqr", "input_names", "linearize",
-    "lqr", "lyap", "optimal", "plot", "run", "state_names", "uncertainty_draw",
+    "load_plugin", "lqr", "lyap", "optimal", "plot", "run", "state_names", "uncertainty_draw",
 ]

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "controllers/lqr_scheduled.hpp"
+#include "controllers/registry.hpp"
 #include "experiment/flight.hpp"
 #include "settings/settings.hpp"
 
@@ -57,7 +58,7 @@ TEST(ShippedScenarios, EveryControllerFliesTheFirstSeconds) {
   controls.timing = false;
   for (const auto& file : shipped_scenarios()) {
     const Flight flight(file.string(), controls);
-    for (const std::string controller : {"theta-d", "sdre", "lqr", "lqr-scheduled", "example-pid"}) {
+    for (const std::string& controller : ControllerRegistry::instance().names()) {  // every one, a new one too
       PreparedController prepared = flight.prepare(spec_for(controller, file));
       const RunResult result = flight.fly(prepared);
       EXPECT_EQ(result.summary.status, sim::RunStatus::completed)

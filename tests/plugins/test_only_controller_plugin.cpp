@@ -1,0 +1,36 @@
+// A controller that exists only for the tests of "a controller is one file": registered here and
+// nowhere else, it must reach every front end (list, run, compare, bench, a campaign, Python) with
+// no other edit. It holds the hover trim input and says it iterated twice per step, so that the
+// benchmark's iterations column is seen to come from the controller itself.
+#include <memory>
+
+#include "controllers/registry.hpp"
+
+namespace {
+
+class TestOnlyController : public thetad::Controller {
+ public:
+  explicit TestOnlyController(Eigen::VectorXd trim) : trim_(std::move(trim)) {}
+
+  std::string name() const override { return "test-only"; }
+  void reset(const Eigen::VectorXd&, double) override {}
+  void control(double, const Eigen::Ref<const Eigen::VectorXd>&, const thetad::Reference&,
+               Eigen::Ref<Eigen::VectorXd> u) override {
+    u = trim_;
+  }
+  int last_iterations() const override { return 2; }
+  std::unique_ptr<thetad::Controller> clone() const override { return std::make_unique<TestOnlyController>(*this); }
+
+ private:
+  Eigen::VectorXd trim_;
+};
+
+const thetad::ControllerRegistration registration(
+    "test-only", "holds the design point's input (a test plug-in: a controller known to no list)",
+    [](const thetad::Settings& settings, const thetad::ControllerContext& context) -> std::unique_ptr<thetad::Controller> {
+      settings.allow_only({});
+      if (context.settings_only) return nullptr;
+      return std::make_unique<TestOnlyController>(context.defaults.input);
+    });
+
+}  // namespace
