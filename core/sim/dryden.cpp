@@ -28,13 +28,15 @@ const double kC1 = kC2 * (1.0 / std::sqrt(3.0) - 1.0);
 std::array<double, 3> exponential_moments(double h) {
   std::array<double, 3> moments{};
   if (h < 0.25) {
-    for (int n = 0; n < 3; ++n) {
-      double term = std::pow(h, n + 1), sum = 0.0;  // (-2h)^k h^(n+1) / k!
-      for (int k = 0; k < 30; ++k) {
-        sum += term / (n + k + 1);
+    // Terms (-2h)^k h^(n+1) / (k! (n + k + 1)): at 2h < 1/2, 16 of them leave less than 1e-17.
+    double power = h;  // h^(n+1)
+    for (std::size_t n = 0; n < 3; ++n, power *= h) {
+      double term = power, sum = 0.0;
+      for (int k = 0; k < 16; ++k) {
+        sum += term / static_cast<double>(static_cast<int>(n) + k + 1);
         term *= -2.0 * h / (k + 1);
       }
-      moments[static_cast<std::size_t>(n)] = sum;
+      moments[n] = sum;
     }
     return moments;
   }
