@@ -49,6 +49,10 @@ void apply(const RunControls& controls, sim::SimulationSettings& settings) {
     settings.wind_gust.enabled = ideal.wind_gust.enabled;
     settings.noise = ideal.noise;
     settings.actuator_limits.enabled = ideal.actuator_limits.enabled;
+    settings.turbulence = ideal.turbulence;
+    settings.discrete_gusts = ideal.discrete_gusts;
+    settings.sensor_noise = ideal.sensor_noise;
+    settings.servos = ideal.servos;
   }
   const auto set = [](const std::optional<bool>& given, bool& value) {
     if (given) value = *given;

@@ -17,7 +17,7 @@ struct RunControls {
   std::optional<double> dt;              // plant step (s); must divide the controller period
   std::optional<int> log_every;          // log every N-th controller sample
   std::optional<std::uint64_t> seed;
-  bool ideal = false;                    // no parameter uncertainty, noise, wind or actuator limits
+  bool ideal = false;                    // no parameter uncertainty, noise, wind, servo dynamics or limits
   // Each disturbance on its own (after `ideal`): replays and sweeps set them one by one.
   std::optional<bool> parameter_uncertainty, wind_gust, measurement_noise, actuator_noise, wind_noise,
       induced_velocity_noise;

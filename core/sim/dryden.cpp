@@ -28,11 +28,12 @@ const double kC1 = kC2 * (1.0 / std::sqrt(3.0) - 1.0);
 std::array<double, 3> exponential_moments(double h) {
   std::array<double, 3> moments{};
   if (h < 0.25) {
-    // Terms (-2h)^k h^(n+1) / (k! (n + k + 1)): at 2h < 1/2, 16 of them leave less than 1e-17.
+    // Terms (-2h)^k h^(n+1) / (k! (n + k + 1)), alternating and falling at 2h < 1/2: summed until
+    // the next is below the last bit (at plant steps, h ~ 1e-4: four terms).
     double power = h;  // h^(n+1)
     for (std::size_t n = 0; n < 3; ++n, power *= h) {
       double term = power, sum = 0.0;
-      for (int k = 0; k < 16; ++k) {
+      for (int k = 0; k < 24 && std::abs(term) > 1e-17 * std::abs(sum); ++k) {
         sum += term / static_cast<double>(static_cast<int>(n) + k + 1);
         term *= -2.0 * h / (k + 1);
       }

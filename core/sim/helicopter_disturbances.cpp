@@ -71,18 +71,20 @@ void HelicopterDisturbances::sample(double t, const Eigen::VectorXd& x, std::mt1
   draws_.draw(rng);
   const Eigen::Vector3d wind = gust_.sample(t, x[heli::kZp], draws_.gust);
   environment_ = sample_environment(wind, draws_, levels_, settings_.noise);
-  if (!moving_air_) {
+  if (moving_air_) {
+    set_moving_air(t, x);
+  } else {
     plant_->set_environment(environment_);
-    return;
   }
-  heli::Environment moved = environment_;
-  moved.wind_ned += turbulence_.wind(x) + discrete_gust_wind(settings_.discrete_gusts, t);
-  plant_->set_environment(moved);
 }
 
 void HelicopterDisturbances::advance(double t, double dt, const Eigen::VectorXd& x) {
   if (!moving_air_) return;
   turbulence_.step(dt, x, environment_.wind_ned);
+  set_moving_air(t, x);
+}
+
+void HelicopterDisturbances::set_moving_air(double t, const Eigen::VectorXd& x) {
   heli::Environment moved = environment_;
   moved.wind_ned += turbulence_.wind(x) + discrete_gust_wind(settings_.discrete_gusts, t);
   plant_->set_environment(moved);

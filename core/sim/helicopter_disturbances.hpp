@@ -46,6 +46,9 @@ class HelicopterDisturbances final : public Disturbances {
   void finish(RunSummary& summary) const override;
 
  private:
+  // The plant's environment: the sample's with the turbulence and the gusts at (t, x) added.
+  void set_moving_air(double t, const Eigen::VectorXd& x);
+
   SimulationSettings settings_;
   heli::Parameters nominal_;
   heli::ModelOptions options_;

@@ -69,8 +69,8 @@ struct SimulationSettings {
 
   // Every disturbance on and no actuator limits: the paper's setting (docs/model.md §8).
   static SimulationSettings paper();
-  // Every disturbance off and no actuator limits: the nominal plant with ideal servos, no wind, no
-  // noise.
+  // Every disturbance off (§15's too) and no actuator limits: the nominal plant with ideal servos,
+  // no wind, no noise.
   static SimulationSettings ideal();
 };
 
