@@ -52,7 +52,12 @@ double factor_value(const YAML::Node& node, const std::string& field, const Fact
   try {
     value = node.as<double>();
   } catch (const YAML::Exception&) {
-    throw SettingsError(field, "expected a number", node.Mark());
+    const std::optional<double> chosen = node.IsScalar() ? choice_value(factor, node.Scalar()) : std::nullopt;
+    if (!chosen)
+      throw SettingsError(field, factor.choices.empty() ? "expected a number"
+                                                        : "expected one of " + std::string(factor.choices) + " (or its position)",
+                          node.Mark());
+    value = *chosen;
   }
   if (!std::isfinite(value) || value < factor.min || value > factor.max) {
     std::ostringstream reason;

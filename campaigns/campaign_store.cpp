@@ -20,7 +20,7 @@ namespace fs = std::filesystem;
 constexpr const char* kFormat = "thetad-campaign-1";
 // meta format_version (docs/glossary.md); absent in version 1. 2: J_dev (metric cost_dev) and the
 // information set (column information) of every run. 3: the factors course and actuator_limits.
-constexpr int kFormatVersion = 3;
+constexpr int kFormatVersion = 4;
 
 // A prepared statement, finalized with its scope.
 class Statement {
@@ -97,7 +97,8 @@ void CampaignStore::check_format(const fs::path& file) const {
   if (version == std::to_string(kFormatVersion)) return;
   throw Error(file.string() + ": a campaign database of format_version " + (version.empty() ? "1" : version) +
               ", written by another thetad (this one writes and reads version " + std::to_string(kFormatVersion) +
-              ", which adds the factors course and actuator_limits): run the campaign anew into another folder (the "
+              ", which adds the factors turbulence_model, turbulence_intensity, turbulence_scale, servo_delay and "
+              "servo_time_constant): run the campaign anew into another folder (the "
               "report still reads it)");
 }
 

@@ -1,5 +1,6 @@
 #include "campaigns/factors.hpp"
 
+#include <cmath>
 #include <limits>
 #include <numbers>
 
@@ -21,6 +22,12 @@ void offset_axis(RunControls& controls, int axis, double value) {
 bool switch_value(const char* name, double value) {
   if (value != 0.0 && value != 1.0) throw Error(std::string(name) + " is a switch: 0 (off) or 1 (on), got " + std::to_string(value));
   return value == 1.0;
+}
+
+// A whole number of `name` (a count or a choice's position), as the int it stands for.
+int whole(const char* name, double value) {
+  if (value != std::floor(value)) throw Error(std::string(name) + " takes whole numbers, got " + std::to_string(value));
+  return static_cast<int>(value);
 }
 
 // The attitude offset likewise, read in degrees (as people state angles), flown in radians.
@@ -59,6 +66,23 @@ const std::vector<Factor>& factors() {
        -360.0, 360.0, [](double v, RunControls& c) { c.course = v * std::numbers::pi / 180.0; }},
       {"actuator_limits", "", "the servo magnitude and rate limits (docs/model.md §12): 1 on, 0 off", 0.0, 1.0,
        [](double v, RunControls& c) { c.actuator_limits = switch_value("actuator_limits", v); }},
+      {"turbulence_model", "", "the gust model on the paper's mean wind (docs/model.md §15): paper, dryden, gauss_markov",
+       0.0, 2.0,
+       [](double v, RunControls& c) {
+         c.turbulence_model = static_cast<sim::TurbulenceSettings::Model>(whole("turbulence_model", v));
+       },
+       "paper dryden gauss_markov"},
+      {"turbulence_intensity", "", "the Dryden intensity: light, moderate, severe (W20 = 15, 30, 45 kt)", 0.0, 2.0,
+       [](double v, RunControls& c) {
+         c.turbulence_intensity = static_cast<sim::TurbulenceIntensity>(whole("turbulence_intensity", v));
+       },
+       "light moderate severe"},
+      {"turbulence_scale", "", "multiplies the Dryden or Gauss-Markov turbulence (0 none, 1 as specified)", 0.0, kInf,
+       [](double v, RunControls& c) { c.turbulence_scale = v; }},
+      {"servo_delay", "samples", "transport delay of the command, in controller samples", 0.0,
+       sim::ServoSettings::kMaxDelaySamples, [](double v, RunControls& c) { c.servo_delay_samples = whole("servo_delay", v); }},
+      {"servo_time_constant", "s", "first-order servo lag of every input", 0.0, 10.0,
+       [](double v, RunControls& c) { c.servo_time_constant = v; }},
       {"dt", "s", "plant (RK4) step; must divide the controller period", 0.0, kInf,
        [](double v, RunControls& c) { c.dt = v; }},
       {"duration", "s", "flight duration (shorter than the scenario: the flight stops there)", 0.0,
@@ -81,6 +105,16 @@ std::string factor_names() {
     names += factor.name;
   }
   return names;
+}
+
+std::optional<double> choice_value(const Factor& factor, std::string_view name) {
+  std::string_view rest = factor.choices;
+  for (double position = 0.0; !rest.empty(); position += 1.0) {
+    const std::size_t space = rest.find(' ');
+    if (rest.substr(0, space) == name) return position;
+    rest = space == std::string_view::npos ? std::string_view() : rest.substr(space + 1);
+  }
+  return std::nullopt;
 }
 
 void apply(const FactorValues& values, RunControls& controls) {

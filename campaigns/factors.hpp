@@ -1,5 +1,6 @@
 #pragma once
 
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -17,6 +18,9 @@ struct Factor {
   std::string_view description;  // for docs and --help
   double min, max;               // the accepted range (RunControls checks the rest, e.g. dt divides the period)
   void (*apply)(double value, RunControls& controls);
+  // A factor that picks one of several names: their list, space-separated; a campaign file may
+  // write a name for its position in the list (0, 1, ...).
+  std::string_view choices = {};
 };
 
 // Every factor, in the order the runs table lists them.
@@ -25,6 +29,9 @@ const std::vector<Factor>& factors();
 const Factor* find_factor(std::string_view name);
 // "uncertainty_scale, noise_scale, ..." for messages.
 std::string factor_names();
+
+// The position of `name` among factor.choices; nullopt when it is not one of them.
+std::optional<double> choice_value(const Factor& factor, std::string_view name);
 
 // A set of factor values: one sweep cell (fixed factors included), in the order they were given.
 using FactorValues = std::vector<std::pair<std::string, double>>;

@@ -3,23 +3,12 @@
 #include <charconv>
 
 #include "core/error.hpp"
+#include "core/sim/seed.hpp"
 
 namespace thetad {
 
-namespace {
-
-// SplitMix64's finalizer (Steele, Lea & Flood 2014): consecutive inputs give uncorrelated outputs.
-std::uint64_t splitmix64(std::uint64_t z) {
-  z += 0x9e3779b97f4a7c15ULL;
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  return z ^ (z >> 31);
-}
-
-}  // namespace
-
 std::uint64_t draw_seed(std::uint64_t base_seed, std::int64_t draw) {
-  return splitmix64(splitmix64(base_seed) ^ static_cast<std::uint64_t>(draw));
+  return sim::splitmix64(sim::splitmix64(base_seed) ^ static_cast<std::uint64_t>(draw));
 }
 
 PlannedRun planned_run(const Campaign& campaign, std::int64_t index) {

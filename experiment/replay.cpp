@@ -7,6 +7,7 @@
 
 #include "controllers/registry.hpp"
 #include "core/error.hpp"
+#include "experiment/disturbance_json.hpp"
 #include "experiment/flight.hpp"
 #include "experiment/result_json.hpp"
 #include "experiment/sha256.hpp"
@@ -56,6 +57,7 @@ RunControls controls_of(const Json& settings, const Json& provenance) {
   controls.noise_scale = noise.value("scale", 1.0);
   controls.gust_scale = settings.at("wind_gust").value("amplitude_scale", 1.0);
   controls.gust_onset = settings.at("wind_gust").value("onset_s", 0.0);
+  controls.beyond_paper = read_beyond_paper(settings);
   return controls;
 }
 

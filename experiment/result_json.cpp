@@ -4,6 +4,7 @@
 #include <string_view>
 
 #include "core/error.hpp"
+#include "experiment/disturbance_json.hpp"
 
 namespace thetad {
 
@@ -52,6 +53,7 @@ Json settings_json(const sim::SimulationSettings& s) {
                           {"lower", channels(s.actuator_limits.lower)},
                           {"upper", channels(s.actuator_limits.upper)},
                           {"rate_per_s", channels(s.actuator_limits.rate)}};
+  write_beyond_paper(s, j);
   j["measure_compute_time"] = s.measure_compute_time;
   return j;
 }

@@ -49,6 +49,10 @@ void apply(const RunControls& controls, sim::SimulationSettings& settings) {
     settings.wind_gust.enabled = ideal.wind_gust.enabled;
     settings.noise = ideal.noise;
     settings.actuator_limits.enabled = ideal.actuator_limits.enabled;
+    settings.turbulence = ideal.turbulence;
+    settings.discrete_gusts = ideal.discrete_gusts;
+    settings.sensor_noise = ideal.sensor_noise;
+    settings.servos = ideal.servos;
   }
   const auto set = [](const std::optional<bool>& given, bool& value) {
     if (given) value = *given;
@@ -76,6 +80,12 @@ void apply(const RunControls& controls, sim::SimulationSettings& settings) {
       throw Error("gust_onset " + seconds(*controls.gust_onset) + ": must be finite and >= 0");
     settings.wind_gust.onset = *controls.gust_onset;
   }
+  controls.beyond_paper.apply(settings);
+  if (controls.turbulence_model) settings.turbulence.model = *controls.turbulence_model;
+  if (controls.turbulence_intensity) settings.turbulence.intensity = *controls.turbulence_intensity;
+  scale("turbulence_scale", controls.turbulence_scale, settings.turbulence.scale);
+  if (controls.servo_delay_samples) settings.servos.delay_samples = *controls.servo_delay_samples;
+  if (controls.servo_time_constant) settings.servos.time_constant.setConstant(*controls.servo_time_constant);
   if (controls.summary_only) settings.keep_log = !*controls.summary_only;
   if (controls.timing) settings.measure_compute_time = *controls.timing;
   // Every override given, the whole checked together (e.g. the log of a long flight must fit).

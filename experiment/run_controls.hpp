@@ -17,7 +17,7 @@ struct RunControls {
   std::optional<double> dt;              // plant step (s); must divide the controller period
   std::optional<int> log_every;          // log every N-th controller sample
   std::optional<std::uint64_t> seed;
-  bool ideal = false;                    // no parameter uncertainty, noise, wind or actuator limits
+  bool ideal = false;                    // no parameter uncertainty, noise, wind, servo dynamics or limits
   // Each disturbance on its own (after `ideal`): replays and sweeps set them one by one.
   std::optional<bool> parameter_uncertainty, wind_gust, measurement_noise, actuator_noise, wind_noise,
       induced_velocity_noise;
@@ -28,6 +28,15 @@ struct RunControls {
   std::optional<double> noise_scale;        // every sensor, actuator, wind and induced-velocity noise level
   std::optional<double> gust_scale;         // the whole wind: mean and gust deviations
   std::optional<double> gust_onset;         // s: calm air before it
+  // The disturbances beyond the paper (docs/model.md §15), whole blocks in place of the scenario's
+  // (a replay sets them as recorded) ...
+  DisturbanceBlocks beyond_paper;
+  // ... then single fields of them (campaign factors).
+  std::optional<sim::TurbulenceSettings::Model> turbulence_model;
+  std::optional<sim::TurbulenceIntensity> turbulence_intensity;
+  std::optional<double> turbulence_scale;
+  std::optional<int> servo_delay_samples;
+  std::optional<double> servo_time_constant;  // s, every input
   // Added to the scenario's initial position (m, north-east-down): the flight starts off the trajectory.
   std::optional<Eigen::Vector3d> initial_offset;
   // Added to the scenario's initial Euler angles (rad: roll φ, pitch θ, yaw ψ): the flight starts tilted.

@@ -200,7 +200,8 @@ void read_simulation(const YAML::Node& root, Scenario& scenario) {
   const YAML::Node node = child(root, "simulation");
   const Settings simulation(node, "simulation");
   simulation.allow_only({"duration", "dt", "controller_period_steps", "log_every", "summary_only", "timing", "seed",
-                         "actuator_limits", "anti_windup", "disturbances", "model"});
+                         "actuator_limits", "anti_windup", "disturbances", "model", "wind", "sensor_noise",
+                         "servos"});
   if (simulation.has("duration")) scenario.simulation_duration = positive(simulation, "duration");
   if (simulation.has("dt")) scenario.dt = positive(simulation, "dt");
   if (simulation.has("log_every")) scenario.log_every = simulation.integer("log_every", 1, 1);
@@ -243,6 +244,8 @@ void read_simulation(const YAML::Node& root, Scenario& scenario) {
   scenario.wind_noise = optional_boolean(disturbances, "wind_noise");
   scenario.induced_velocity_noise = optional_boolean(disturbances, "induced_velocity_noise");
 
+  scenario.beyond_paper =
+      read_disturbance_blocks(child(node, "wind"), child(node, "sensor_noise"), child(node, "servos"));
   scenario.model_options = read_model(child(node, "model"), scenario.model_preset);
   check_flight_length(Settings(root), simulation, scenario);
 }
@@ -302,6 +305,7 @@ sim::SimulationSettings Scenario::simulation_settings(sim::SimulationSettings ba
   if (actuator_noise) base.noise.actuator = *actuator_noise;
   if (wind_noise) base.noise.wind_component = *wind_noise;
   if (induced_velocity_noise) base.noise.induced_velocity = *induced_velocity_noise;
+  beyond_paper.apply(base);
   return base;
 }
 

@@ -10,6 +10,7 @@
 #include "core/helicopter/model_options.hpp"
 #include "core/sim/noise.hpp"
 #include "core/sim/simulator.hpp"
+#include "scenarios/disturbance_blocks.hpp"
 #include "scenarios/trajectory.hpp"
 
 namespace thetad {
@@ -48,6 +49,8 @@ struct Scenario {
   std::optional<bool> actuator_noise;
   std::optional<bool> wind_noise;              // Table 1 #26-28
   std::optional<bool> induced_velocity_noise;  // Table 1 #29-30
+  // `wind:`, `sensor_noise:`, `servos:` (docs/model.md §15): absent blocks keep the base's (off).
+  DisturbanceBlocks beyond_paper;
 
   // This scenario with its trajectory flown `speed_scale` times faster (PhasedTrajectory::time_scaled):
   // the same path in 1/s of the time, so duration and simulation_duration shrink by s too, and a

@@ -25,8 +25,9 @@ import plot_campaign  # noqa: E402
 
 FORMAT = "thetad-campaign-1"
 # The versions this report reads: 2 added J_dev (cost_dev) and the information set of each run, 3 the
-# factors course and actuator_limits (columns it reads only when they were swept).
-FORMAT_VERSIONS = ("2", "3")
+# factors course and actuator_limits, 4 turbulence_model, turbulence_intensity, turbulence_scale,
+# servo_delay and servo_time_constant (columns it reads only when they were swept).
+FORMAT_VERSIONS = ("2", "3", "4")
 # The figures summarized per controller and cell: column, what it is, unit.
 FIGURES = [
     ("rms_error_m", "RMS position error", "m"),

@@ -21,8 +21,8 @@ namespace thetad::sim {
 // (HelicopterDisturbances), any other plant gets NoDisturbances.
 //
 // simulate() calls, in this order: start() once; check() on the initial state; then per controller
-// sample sample(), measure(), the controller, actuate(), log_values(), and check() after every RK4
-// step; finish() at the end. Every call but start() and finish() is on the hot path: no allocation.
+// sample sample(), measure(), the controller, actuate(), log_values(), and after every RK4 step
+// check() then advance(); finish() at the end. Every call but start() and finish() is on the hot path: no allocation.
 class Disturbances {
  public:
   virtual ~Disturbances() = default;
@@ -39,6 +39,13 @@ class Disturbances {
                                              Eigen::VectorXd& applied) = 0;
   // Why the state x at time t counts as diverged, or nothing.
   virtual std::optional<std::string> check(const Eigen::VectorXd& x, double t) const = 0;
+  // What moves at the plant rate (turbulence) after an RK4 step of dt that ended at t in state x.
+  // Nothing (the default) for disturbances that change only per controller sample.
+  virtual void advance(double t, double dt, const Eigen::VectorXd& x) {
+    (void)t;
+    (void)dt;
+    (void)x;
+  }
   // The log columns this object adds after the applied input, and their values for the last sample.
   // Whether the last actuate() held an input channel at a magnitude bound: what the anti-windup of
   // the position integrals acts on (the rate limit, which filters the actuator noise at most

@@ -7,6 +7,7 @@
 #include "core/error.hpp"
 #include "core/helicopter/state.hpp"
 #include "core/helicopter/uncertainty.hpp"
+#include "core/sim/discrete_gust.hpp"
 
 namespace thetad::sim {
 
@@ -21,6 +22,14 @@ std::string format_reason(const char* what, double value, double limit, const ch
   return buffer;
 }
 
+// The paper's gust; with a turbulence model chosen, its mean wind alone (the turbulence replaces
+// its held white deviations; their draws are still taken, so the other draws stay as they are).
+WindGustSettings paper_gust(const SimulationSettings& settings) {
+  WindGustSettings gust = settings.wind_gust;
+  if (settings.turbulence.active()) gust.sigma = 0.0;
+  return gust;
+}
+
 }  // namespace
 
 HelicopterDisturbances::HelicopterDisturbances(const SimulationSettings& settings, const heli::Parameters& nominal,
@@ -29,8 +38,14 @@ HelicopterDisturbances::HelicopterDisturbances(const SimulationSettings& setting
       nominal_(nominal),
       options_(options),
       levels_(NoiseLevels::from_uncertainty_table(settings.noise.scale)),
-      gust_(settings.wind_gust, settings.controller_period()),
-      limiter_(settings.actuator_limits, settings.controller_period()) {}
+      gust_(paper_gust(settings), settings.controller_period()),
+      turbulence_(settings.turbulence),
+      sensor_noise_(settings.sensor_noise, settings.controller_period()),
+      delay_(kInputDim, settings.servos.delay_samples),
+      lag_(settings.servos.time_constant, settings.controller_period()),
+      limiter_(settings.actuator_limits, settings.controller_period()),
+      delayed_(kInputDim),
+      moving_air_(settings.turbulence.active() || !settings.discrete_gusts.empty()) {}
 
 const SdcPlant& HelicopterDisturbances::start(std::mt19937_64& rng) {
   // Drawn whether or not the uncertainty is on, so that every later draw is the same either way.
@@ -43,6 +58,10 @@ const SdcPlant& HelicopterDisturbances::start(std::mt19937_64& rng) {
     }
   }
   gust_.reset();
+  turbulence_.start(settings_.seed);
+  sensor_noise_.start(settings_.seed);
+  delay_.reset();
+  lag_.reset();
   limiter_.reset();
   measured_integral_ = {};
   return *plant_;
@@ -51,18 +70,44 @@ const SdcPlant& HelicopterDisturbances::start(std::mt19937_64& rng) {
 void HelicopterDisturbances::sample(double t, const Eigen::VectorXd& x, std::mt19937_64& rng) {
   draws_.draw(rng);
   const Eigen::Vector3d wind = gust_.sample(t, x[heli::kZp], draws_.gust);
-  plant_->set_environment(sample_environment(wind, draws_, levels_, settings_.noise));
+  environment_ = sample_environment(wind, draws_, levels_, settings_.noise);
+  if (moving_air_) {
+    set_moving_air(t, x);
+  } else {
+    plant_->set_environment(environment_);
+  }
+}
+
+void HelicopterDisturbances::advance(double t, double dt, const Eigen::VectorXd& x) {
+  if (!moving_air_) return;
+  turbulence_.step(dt, x, environment_.wind_ned);
+  set_moving_air(t, x);
+}
+
+void HelicopterDisturbances::set_moving_air(double t, const Eigen::VectorXd& x) {
+  heli::Environment moved = environment_;
+  moved.wind_ned += turbulence_.wind(x) + discrete_gust_wind(settings_.discrete_gusts, t);
+  plant_->set_environment(moved);
 }
 
 void HelicopterDisturbances::measure(const Eigen::VectorXd& x, const Reference& reference,
                                      Eigen::Ref<Eigen::VectorXd> measured) {
   sim::measure(x, reference.position, measured_integral_.value, draws_, levels_, settings_.noise, measured);
+  if (settings_.sensor_noise.active()) sensor_noise_.add(measured.head<heli::kPhysicalStateDim>());
   measured_integral_.accumulate(measured.segment<3>(heli::kXp), settings_.controller_period());
 }
 
 std::optional<std::string> HelicopterDisturbances::actuate(double t, const Eigen::VectorXd& x,
                                                            const Eigen::VectorXd& command, Eigen::VectorXd& applied) {
-  apply_actuator_noise(command, draws_, levels_, settings_.noise, applied);
+  // The servo chain of docs/model.md §15.5: delay, actuator noise, lag, rate and magnitude limits.
+  if (settings_.servos.delay_samples > 0) {
+    delayed_ = command;
+    delay_.apply(delayed_);
+    apply_actuator_noise(delayed_, draws_, levels_, settings_.noise, applied);
+  } else {
+    apply_actuator_noise(command, draws_, levels_, settings_.noise, applied);
+  }
+  if (settings_.servos.lagged()) lag_.apply(applied);
   limiter_.apply(applied);
   try {
     rotor_speed_ = plant_->rotor_speed(x, applied[heli::kTmr]);

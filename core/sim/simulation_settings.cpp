@@ -26,6 +26,10 @@ void SimulationSettings::validate() const {
   if (duration / controller_period() > 1e10)
     throw Error("simulate: the controller period is too short for the duration (more than 1e10 samples)");
   if (actuator_limits.enabled) actuator_limits.validate();
+  turbulence.validate();
+  for (const DiscreteGust& gust : discrete_gusts) gust.validate();
+  sensor_noise.validate();
+  servos.validate();
 }
 
 void SimulationSettings::check_memory(std::size_t log_columns) const {

@@ -3,8 +3,14 @@
 #include <cstdint>
 #include <numbers>
 
+#include <vector>
+
 #include "core/sim/actuator_limits.hpp"
+#include "core/sim/discrete_gust.hpp"
 #include "core/sim/noise.hpp"
+#include "core/sim/sensor_noise.hpp"
+#include "core/sim/servo_dynamics.hpp"
+#include "core/sim/turbulence.hpp"
 #include "core/sim/wind_gust.hpp"
 
 namespace thetad::sim {
@@ -29,6 +35,13 @@ struct SimulationSettings {
   double uncertainty_scale = 1.0;
   WindGustSettings wind_gust;
   NoiseSettings noise;
+  // The disturbances beyond the paper's (docs/model.md §15), each off by default and drawing from
+  // its own stream (RandomStream): turbulence at the plant rate, 1 - cosine gusts, additive sensor
+  // noise with a stated spectrum, servo lag and transport delay.
+  TurbulenceSettings turbulence;
+  std::vector<DiscreteGust> discrete_gusts;
+  SensorNoiseSettings sensor_noise;
+  ServoSettings servos;
   DivergenceLimits limits;
   // Servo magnitude and rate limits on the applied input: the X-Cell's (docs/model.md §12), on
   // unless turned off; the paper's setting has none.
@@ -56,8 +69,8 @@ struct SimulationSettings {
 
   // Every disturbance on and no actuator limits: the paper's setting (docs/model.md §8).
   static SimulationSettings paper();
-  // Every disturbance off and no actuator limits: the nominal plant with ideal servos, no wind, no
-  // noise.
+  // Every disturbance off (§15's too) and no actuator limits: the nominal plant with ideal servos,
+  // no wind, no noise.
   static SimulationSettings ideal();
 };
 

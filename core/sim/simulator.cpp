@@ -29,7 +29,7 @@ std::int64_t call_control(ControlLaw& law, double t, const Eigen::VectorXd& meas
 
 // The controller period's RK4 steps from t with `applied` held (zero-order hold). On divergence,
 // t becomes the end of the step that diverged and the reason is returned.
-std::optional<std::string> hold_for_one_period(const SdcPlant& plant, const Disturbances& disturbances,
+std::optional<std::string> hold_for_one_period(const SdcPlant& plant, Disturbances& disturbances,
                                                const Eigen::VectorXd& applied, const SimulationSettings& settings,
                                                Rk4Workspace& workspace, Eigen::VectorXd& x, double& t) {
   for (int step = 1; step <= settings.controller_period_steps; ++step) {
@@ -45,6 +45,7 @@ std::optional<std::string> hold_for_one_period(const SdcPlant& plant, const Dist
       t = t_end;
       return failure;
     }
+    disturbances.advance(t_end, settings.dt, x);
   }
   return std::nullopt;
 }

@@ -35,10 +35,11 @@ inline LogColumn step_time_column() { return {"compute", "ns"}; }
 // Flies `law` on the plant that disturbances.start() returns, from x0 for settings.duration: the one
 // flight loop of every plant.
 //
-// One std::mt19937_64 seeded with settings.seed drives every random draw, through `disturbances`.
-// Per controller sample k at t_k = k T_c: the disturbances' sample(); the reference; measure();
-// control() (timed); actuate(); metrics; log; then controller_period_steps RK4 steps of dt with the
-// applied input held (zero-order hold), each followed by check(). The reference's integral is
+// One std::mt19937_64 seeded with settings.seed drives every paper draw, through `disturbances`
+// (the later sources draw from their own streams, RandomStream). Per controller sample k at
+// t_k = k T_c: the disturbances' sample(); the reference; measure(); control() (timed); actuate();
+// metrics; log; then controller_period_steps RK4 steps of dt with the applied input held
+// (zero-order hold), each followed by check() and advance(). The reference's integral is
 // accumulated by the PositionIntegral rule. A check() or actuate() that fails, a non-finite command,
 // or a thetad::Error from the plant ends the run as diverged; whatever the controller throws ends
 // it as failed. Throws thetad::Error for invalid settings, a log that would not fit in memory, or a

@@ -42,6 +42,39 @@ TEST(Factors, TheAttitudeOffsetIsInDegreesInTheFileAndInRadiansInTheRun) {
   EXPECT_EQ(find_factor("initial_offset_pitch")->unit, "deg");
 }
 
+TEST(Factors, TurbulenceAndServosSetTheirFields) {
+  RunControls controls;
+  apply({{"turbulence_model", 1.0}, {"turbulence_intensity", 2.0}, {"turbulence_scale", 0.5}, {"servo_delay", 3.0},
+         {"servo_time_constant", 0.02}},
+        controls);
+  EXPECT_EQ(controls.turbulence_model, sim::TurbulenceSettings::Model::dryden);
+  EXPECT_EQ(controls.turbulence_intensity, sim::TurbulenceIntensity::severe);
+  EXPECT_EQ(controls.turbulence_scale, 0.5);
+  EXPECT_EQ(controls.servo_delay_samples, 3);
+  EXPECT_EQ(controls.servo_time_constant, 0.02);
+  sim::SimulationSettings settings;
+  thetad::apply(controls, settings);
+  EXPECT_EQ(settings.turbulence.model, sim::TurbulenceSettings::Model::dryden);
+  EXPECT_EQ(settings.servos.time_constant, sim::InputVector::Constant(0.02));
+  EXPECT_THROW(apply({{"servo_delay", 1.5}}, controls), Error);
+}
+
+TEST(Factors, ACampaignFileMayNameAChoice) {
+  const std::string head = "campaign: x\nscenarios: [scenario-1]\ncontrollers: [{controller: lqr}]\ndraws: {count: 1}\n";
+  const Campaign campaign =
+      parse_campaign(head + "fixed: {turbulence_model: dryden}\nsweep: {grid: {turbulence_intensity: [light, 1, severe]}}\n",
+                     "factors.yaml");
+  ASSERT_EQ(campaign.cells.size(), 3u);
+  EXPECT_EQ(campaign.cells[2].back(), (std::pair<std::string, double>("turbulence_intensity", 2.0)));
+  EXPECT_EQ(campaign.cells[2].front(), (std::pair<std::string, double>("turbulence_model", 1.0)));
+  try {
+    parse_campaign(head + "fixed: {turbulence_model: karman}\n", "factors.yaml");
+    ADD_FAILURE() << "no error";
+  } catch (const Error& error) {
+    EXPECT_THAT(error.what(), HasSubstr("field 'fixed.turbulence_model': expected one of paper dryden gauss_markov"));
+  }
+}
+
 TEST(Factors, ACampaignFileRefusesValuesOutsideTheirRange) {
   const std::string head = "campaign: x\nscenarios: [scenario-1]\ncontrollers: [{controller: lqr}]\ndraws: {count: 1}\n";
   const auto error_of = [&](const std::string& sweep) {
