@@ -32,8 +32,11 @@ std::vector<LogColumn> log_columns(const std::vector<LogColumn>& schema, bool ti
 //   2: "log.columns" lists the CSV's columns (a plant's own); "provenance.plant" names the plant,
 //      "provenance.scenario.text" holds the scenario as flown, "provenance.initial_state" where a
 //      plant's flight started.
+//   3: "settings" holds "turbulence", "discrete_gusts", "sensor_noise" and "servos" (docs/model.md
+//      §15); a file without them flew with all of them off, which replay restores. A thetad that
+//      reads up to version 2 refuses these files rather than replay them without their disturbances.
 inline constexpr const char* kRunFormat = "thetad-run-1";
-inline constexpr int kRunFormatVersion = 2;
+inline constexpr int kRunFormatVersion = 3;
 // The version of `result` (1 when it says none); throws thetad::Error naming `file` when it is of
 // a newer thetad than this one.
 int run_format_version(const nlohmann::ordered_json& result, const std::string& file);
