@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <utility>
 
 namespace thetad {
 
@@ -21,7 +22,8 @@ std::chrono::duration<double> progress_interval() {
   return std::chrono::duration<double>(10.0);
 }
 
-Progress::Progress(Mode mode) : mode_(mode), interval_(progress_interval()) {}
+Progress::Progress(Mode mode, Listener listener)
+    : mode_(mode), listener_(std::move(listener)), interval_(progress_interval()) {}
 
 std::string format_duration(double seconds) {
   char text[48];
@@ -65,9 +67,11 @@ void Progress::start(const std::string& label, double total, const std::string& 
   started_ = last_shown_ = Clock::now();
   if (mode_ == Mode::lines)
     std::fprintf(stderr, "%s %s (%s)\n", label_.c_str(), unit_.empty() ? "flying" : "started", what().c_str());
+  if (listener_) listener_(label_, 0.0, total_);
 }
 
 void Progress::update(double done, const std::string& note) {
+  if (listener_) listener_(label_, done, total_);
   if (mode_ == Mode::quiet) return;
   const auto now = Clock::now();
   const auto since = now - last_shown_;
@@ -81,9 +85,14 @@ void Progress::update(double done, const std::string& note) {
 }
 
 void Progress::finish(const std::string& outcome) {
+  if (listener_) listener_(label_, total_, total_);
   if (mode_ == Mode::quiet) return;
   if (mode_ == Mode::live) std::fprintf(stderr, "\r\033[K");
   std::fprintf(stderr, "%s %s\n", label_.c_str(), outcome.c_str());
+}
+
+void Progress::note(const std::string& line) {
+  if (mode_ != Mode::quiet) std::fprintf(stderr, "%s\n", line.c_str());
 }
 
 }  // namespace thetad

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <chrono>
+#include <functional>
 #include <string>
 
 namespace thetad {
@@ -15,7 +16,13 @@ class Progress {
   // live when stderr is a terminal and CI is unset, lines otherwise; quiet when asked for.
   static Mode mode_for_stderr(bool quiet);
 
-  explicit Progress(Mode mode);
+  // What follows the tasks besides stderr (Python's progress callback): the task's label, what is
+  // done and its total, at start (0), at every update and at finish (done = total: the task has
+  // ended), in every mode, on the thread that reports. What it throws reaches that thread's work (a
+  // flight, a search), which stops.
+  using Listener = std::function<void(const std::string& label, double done, double total)>;
+
+  explicit Progress(Mode mode, Listener listener = {});
 
   // One task of `total` units, shown under `label`: simulated seconds when `unit` is empty (with
   // the real-time factor), else counted things such as "evaluations".
@@ -24,6 +31,8 @@ class Progress {
   void update(double done, const std::string& note = {});
   // Ends the task's display with `outcome` ("completed (12.3 s wall)").
   void finish(const std::string& outcome);
+  // A line of its own between tasks, saying what a step produced ("recorded 8500 samples ...").
+  void note(const std::string& line);
 
   Mode mode() const { return mode_; }
 
@@ -33,6 +42,7 @@ class Progress {
   std::string what() const;  // "12.5 s simulated", "40 evaluations"
 
   Mode mode_;
+  Listener listener_;
   std::chrono::duration<double> interval_;
   std::string label_, unit_;
   double total_ = 0.0;

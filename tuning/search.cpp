@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <exception>
 #include <limits>
 
 #include <nlopt.hpp>
@@ -79,8 +80,18 @@ struct Tracked {
     return std::isfinite(value) ? value : std::numeric_limits<double>::max();
   }
 
+  // NLopt's C++ wrapper turns whatever the objective throws into "nlopt failure": the exception
+  // is kept here instead and rethrown once NLopt has stopped (a flight's error, a Ctrl-C from Python).
+  std::exception_ptr failure;
+
   static double call(const std::vector<double>& x, std::vector<double>&, void* self) {
-    return (*static_cast<Tracked*>(self))(x);
+    Tracked& tracked = *static_cast<Tracked*>(self);
+    try {
+      return tracked(x);
+    } catch (...) {
+      tracked.failure = std::current_exception();
+      throw nlopt::forced_stop();
+    }
   }
 };
 
@@ -100,8 +111,8 @@ std::string run_stage(Tracked& objective, nlopt::algorithm id, const std::vector
     return stop_text(opt.optimize(x, value));
   } catch (const nlopt::roundoff_limited&) {
     return stop_text(nlopt::ROUNDOFF_LIMITED);
-  } catch (const thetad::Error&) {
-    throw;
+  } catch (const nlopt::forced_stop&) {
+    std::rethrow_exception(objective.failure);  // only Tracked::call forces a stop, keeping what it caught
   } catch (const std::exception& error) {
     throw Error("tuning: NLopt " + std::string(opt.get_algorithm_name()) + " failed: " + error.what());
   }

@@ -87,6 +87,31 @@ TEST(Search, StepsAroundInfiniteValues) {
   }
 }
 
+// What the objective throws mid-search (a flight's error, Python's KeyboardInterrupt) leaves the
+// search as it was thrown, not as NLopt's "nlopt failure", and stops it at once.
+TEST(Search, RethrowsWhatTheObjectiveThrows) {
+  struct Stop {
+    int at;
+  };
+  for (const char* algorithm : {"LN_BOBYQA", "LN_COBYLA", "GN_DIRECT_L"}) {
+    FitOptions options;
+    options.algorithm = algorithm;
+    int calls = 0;
+    try {
+      tuning::fit(
+          [&](const VectorXd& k, const VectorXd& l) {
+            if (++calls == 5) throw Stop{calls};
+            return bowl(k, l);
+          },
+          2, options);
+      ADD_FAILURE() << algorithm << ": no exception";
+    } catch (const Stop& stop) {
+      EXPECT_EQ(stop.at, 5) << algorithm;
+    }
+    EXPECT_EQ(calls, 5) << algorithm;
+  }
+}
+
 TEST(FitOptionsCheck, BadOptionsGiveClearErrors) {
   const auto error_of = [](const FitOptions& options, int parameters = 2) -> std::string {
     try {
