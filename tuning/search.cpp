@@ -68,7 +68,11 @@ struct Tracked {
   std::vector<double> best_x;
 
   double operator()(const std::vector<double>& x) {
-    const double value = objective(Eigen::Map<const Eigen::VectorXd>(x.data(), static_cast<Eigen::Index>(x.size())));
+    // COBYLA's linear model, fitted through the huge value of a diverged draw, can step to NaN;
+    // nothing flies there (a controller refuses NaN settings), and the huge value steers it back.
+    const bool finite = std::all_of(x.begin(), x.end(), [](double v) { return std::isfinite(v); });
+    const double value = finite ? objective(Eigen::Map<const Eigen::VectorXd>(x.data(), static_cast<Eigen::Index>(x.size())))
+                                : std::numeric_limits<double>::quiet_NaN();
     ++evaluations;
     const double ranked = std::isfinite(value) ? value : std::numeric_limits<double>::infinity();
     if (ranked < best || best_x.empty()) {
