@@ -11,5 +11,6 @@ void bind_numerics(pybind11::module_& module);     // numerics.cpp: care, lqr, l
 void bind_model(pybind11::module_& module);        // model.cpp: Helicopter, trim, names
 void bind_controllers(pybind11::module_& module);  // controllers.cpp: Controller, controller()
 void bind_flights(pybind11::module_& module);      // flights.cpp: run, compare, RunResult
+void bind_tuning(pybind11::module_& module);       // tuning.cpp: tune
 
 }  // namespace thetad::python

@@ -13,4 +13,5 @@ PYBIND11_MODULE(_thetad, module) {
   thetad::python::bind_model(module);
   thetad::python::bind_controllers(module);
   thetad::python::bind_flights(module);
+  thetad::python::bind_tuning(module);
 }

@@ -35,4 +35,32 @@ py::object to_python(const nlohmann::ordered_json& json) {
   return py::module_::import("json").attr("loads")(json.dump());
 }
 
+RunControls run_controls(const py::kwargs& keywords) {
+  RunControls controls;
+  const auto flag = [](py::handle value) { return value.cast<bool>(); };
+  for (const auto& [key, value] : keywords) {
+    const std::string name = key.cast<std::string>();
+    if (name == "seed") controls.seed = value.cast<std::uint64_t>();
+    else if (name == "duration") controls.duration = value.cast<double>();
+    else if (name == "dt") controls.dt = value.cast<double>();
+    else if (name == "log_every") controls.log_every = value.cast<int>();
+    else if (name == "summary_only") controls.summary_only = flag(value);
+    else if (name == "timing") controls.timing = flag(value);
+    else if (name == "ideal") controls.ideal = flag(value);
+    else if (name == "parameter_uncertainty") controls.parameter_uncertainty = flag(value);
+    else if (name == "wind_gust") controls.wind_gust = flag(value);
+    else if (name == "measurement_noise") controls.measurement_noise = flag(value);
+    else if (name == "actuator_noise") controls.actuator_noise = flag(value);
+    else if (name == "wind_noise") controls.wind_noise = flag(value);
+    else if (name == "induced_velocity_noise") controls.induced_velocity_noise = flag(value);
+    else if (name == "actuator_limits") controls.actuator_limits = flag(value);
+    else if (name == "anti_windup") controls.anti_windup = flag(value);
+    else
+      throw py::type_error("unknown run control '" + name +
+                           "' (seed, duration, dt, log_every, summary_only, timing, ideal, parameter_uncertainty, "
+                           "wind_gust, measurement_noise, actuator_noise, wind_noise, induced_velocity_noise, actuator_limits, anti_windup)");
+  }
+  return controls;
+}
+
 }  // namespace thetad::python

@@ -1,8 +1,8 @@
 """thetad from Python: the θ–D, SDRE and LQR controllers on the X-Cell helicopter model, at C++ speed.
 
 The numerics (care, lqr, dare, dlqr, lyap), the model (Helicopter), the registered controllers (controller,
-controllers), controllers written in Python (subclasses of Controller) and flights (run, compare)
-come from the C++ library through the extension module thetad._thetad. docs/python.md is the guide.
+controllers), controllers written in Python (subclasses of Controller), flights (run, compare) and
+tuning (tune) come from the C++ library through the extension module thetad._thetad. docs/python.md is the guide.
 """
 
 import os as _os
@@ -48,11 +48,12 @@ from ._thetad import (  # noqa: E402  (after the data folder is known)
     lyap,
     run,
     state_names,
+    tune,
     uncertainty_draw,
 )
 
 __all__ = [
     "CareResult", "Controller", "DareResult", "DesignDefaults", "Error", "Helicopter", "Linearization", "Reference",
     "RegisteredController", "RunResult", "Trim", "care", "compare", "comparison_table", "controller", "controllers",
-    "dare", "dlqr", "input_names", "linearize", "lqr", "lyap", "run", "state_names", "uncertainty_draw",
+    "dare", "dlqr", "input_names", "linearize", "lqr", "lyap", "run", "state_names", "tune", "uncertainty_draw",
 ]
