@@ -91,4 +91,8 @@ void Progress::finish(const std::string& outcome) {
   std::fprintf(stderr, "%s %s\n", label_.c_str(), outcome.c_str());
 }
 
+void Progress::note(const std::string& line) {
+  if (mode_ != Mode::quiet) std::fprintf(stderr, "%s\n", line.c_str());
+}
+
 }  // namespace thetad

@@ -35,6 +35,8 @@ class Progress {
   void update(double done, const std::string& note = {});
   // Ends the task's display with `outcome` ("completed (12.3 s wall)").
   void finish(const std::string& outcome);
+  // A line of its own between tasks, saying what a step produced ("recorded 8500 samples ...").
+  void note(const std::string& line);
 
   Mode mode() const { return mode_; }
 

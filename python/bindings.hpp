@@ -15,5 +15,6 @@ void bind_bench(pybind11::module_& module);        // benchmark.cpp: bench
 void bind_optimal(pybind11::module_& module);      // optimality.cpp: optimal, Optimality
 void bind_campaigns(pybind11::module_& module);    // campaigns.cpp: campaign_run
 void bind_figures(pybind11::module_& module);      // figures.cpp: _draw_figures, _shipped_script
+void bind_tuning(pybind11::module_& module);       // tuning.cpp: tune
 
 }  // namespace thetad::python

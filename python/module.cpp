@@ -17,4 +17,5 @@ PYBIND11_MODULE(_thetad, module) {
   thetad::python::bind_optimal(module);
   thetad::python::bind_campaigns(module);
   thetad::python::bind_figures(module);
+  thetad::python::bind_tuning(module);
 }

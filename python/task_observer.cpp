@@ -30,6 +30,16 @@ ProgressObserver TaskObserver::tasks() {
   };
 }
 
+std::function<void(double)> TaskObserver::signals(const std::string& label) {
+  return [this, label](double t) {
+    const Clock::time_point now = Clock::now();
+    if (now - last_check_ < kSignalPeriod) return;
+    last_check_ = now;
+    py::gil_scoped_acquire locked;
+    raise_pending_signal(label, t);
+  };
+}
+
 void TaskObserver::observe(const std::string& label, double done, bool last) {
   const Clock::time_point now = Clock::now();
   if (!last && now - last_check_ < kSignalPeriod) return;

@@ -28,6 +28,9 @@ class TaskObserver {
   // For a library task's Progress (experiment/progress.hpp), called with the GIL released: each of
   // its tasks reports progress(done, total) anew.
   ProgressObserver tasks();
+  // For work that reports no progress of its own (a tuning search's draws, flown on its threads):
+  // Ctrl-C only, saying it stopped `label`.
+  std::function<void(double t)> signals(const std::string& label);
 
   // Both observe at most every kSignalPeriod of wall time: they take the GIL and check for
   // signals; after a Ctrl-C they throw py::error_already_set holding a KeyboardInterrupt that says

@@ -1,6 +1,7 @@
 #include "tuning/closed_loop.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <limits>
 
 #include "controllers/theta_d.hpp"
@@ -61,11 +62,27 @@ DrawFlights::DrawFlights(const std::string& scenario, RunControls controls, Para
 std::vector<sim::RunSummary> DrawFlights::fly(const ControllerSpec& spec, const std::vector<std::uint64_t>& seeds) {
   std::vector<sim::RunSummary> summaries(seeds.size());
   const int workers = static_cast<int>(std::min(flights_.size(), std::max<std::size_t>(1, seeds.size())));
+  // The calling thread is worker 0 (for_each_chunk): the observer watches its flights; once it has
+  // thrown, the others stop at their next sample, and for_each_chunk rethrows worker 0's exception.
+  std::atomic<bool> stopping{false};
+  struct Stopped {};
+  const std::function<void(double)> watched = [&](double t) {
+    try {
+      observe_(t);
+    } catch (...) {
+      stopping = true;
+      throw;
+    }
+  };
+  const std::function<void(double)> stop_when_told = [&](double) {
+    if (stopping) throw Stopped{};
+  };
   for_each_chunk(seeds.size(), 1, workers, [&](int worker, std::size_t draw, std::size_t, std::size_t) {
     Flight& flight = *flights_[static_cast<std::size_t>(worker)];
     flight.set_seed(seeds[draw]);
     PreparedController prepared = flight.prepare(spec);
-    summaries[draw] = flight.fly(prepared).summary;
+    const std::function<void(double)> none;
+    summaries[draw] = flight.fly(prepared, nullptr, {}, !observe_ ? none : worker == 0 ? watched : stop_when_told).summary;
   });
   return summaries;
 }

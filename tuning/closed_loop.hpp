@@ -7,8 +7,10 @@
 // the tuning; the matches of ΣT_i to P (sigma_fit, entry_fit) only hope for it.
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -54,6 +56,10 @@ class DrawFlights {
 
   const Flight& flight() const { return *flights_.front(); }
   const Parameterization& parameters() const { return parameters_; }
+  // Calls `observe` with the simulated time of the flights flown on the thread that calls fly()
+  // (Flight::fly's observe): what it throws ends fly(), the other workers' flights at their next
+  // progress sample, and propagates (a front end's way to stop a search: Python's Ctrl-C).
+  void set_observer(std::function<void(double t)> observe) { observe_ = std::move(observe); }
 
   // The summaries of `spec` flown on each of `seeds`, in order.
   std::vector<sim::RunSummary> fly(const ControllerSpec& spec, const std::vector<std::uint64_t>& seeds);
@@ -65,6 +71,7 @@ class DrawFlights {
  private:
   std::vector<std::unique_ptr<Flight>> flights_;  // one per worker: set_seed changes a Flight
   Parameterization parameters_;
+  std::function<void(double t)> observe_;
 };
 
 // Minimises mean_metric over the `training` draws in the parameterization's box with search_box.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <exception>
 #include <limits>
 
 #include <nlopt.hpp>
@@ -67,7 +68,11 @@ struct Tracked {
   std::vector<double> best_x;
 
   double operator()(const std::vector<double>& x) {
-    const double value = objective(Eigen::Map<const Eigen::VectorXd>(x.data(), static_cast<Eigen::Index>(x.size())));
+    // COBYLA's linear model, fitted through the huge value of a diverged draw, can step to NaN;
+    // nothing flies there (a controller refuses NaN settings), and the huge value steers it back.
+    const bool finite = std::all_of(x.begin(), x.end(), [](double v) { return std::isfinite(v); });
+    const double value = finite ? objective(Eigen::Map<const Eigen::VectorXd>(x.data(), static_cast<Eigen::Index>(x.size())))
+                                : std::numeric_limits<double>::quiet_NaN();
     ++evaluations;
     const double ranked = std::isfinite(value) ? value : std::numeric_limits<double>::infinity();
     if (ranked < best || best_x.empty()) {
@@ -79,8 +84,18 @@ struct Tracked {
     return std::isfinite(value) ? value : std::numeric_limits<double>::max();
   }
 
+  // NLopt's C++ wrapper turns whatever the objective throws into "nlopt failure": the exception
+  // is kept here instead and rethrown once NLopt has stopped (a flight's error, a Ctrl-C from Python).
+  std::exception_ptr failure;
+
   static double call(const std::vector<double>& x, std::vector<double>&, void* self) {
-    return (*static_cast<Tracked*>(self))(x);
+    Tracked& tracked = *static_cast<Tracked*>(self);
+    try {
+      return tracked(x);
+    } catch (...) {
+      tracked.failure = std::current_exception();
+      throw nlopt::forced_stop();
+    }
   }
 };
 
@@ -100,8 +115,8 @@ std::string run_stage(Tracked& objective, nlopt::algorithm id, const std::vector
     return stop_text(opt.optimize(x, value));
   } catch (const nlopt::roundoff_limited&) {
     return stop_text(nlopt::ROUNDOFF_LIMITED);
-  } catch (const thetad::Error&) {
-    throw;
+  } catch (const nlopt::forced_stop&) {
+    std::rethrow_exception(objective.failure);  // only Tracked::call forces a stop, keeping what it caught
   } catch (const std::exception& error) {
     throw Error("tuning: NLopt " + std::string(opt.get_algorithm_name()) + " failed: " + error.what());
   }

@@ -61,6 +61,9 @@ struct TuningReport {
   int threads = 0;
   std::vector<HeldOutValidation> validations;  // the tuning scenario first, then a held-out scenario
   Provenance provenance;
+  // What the run wrote (tune_run.hpp): the tuned settings file first, then tuning.json and the
+  // σ_max curves; not in tuning.json.
+  std::vector<std::filesystem::path> files;
 
   bool any_diverged() const;
 };

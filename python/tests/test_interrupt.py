@@ -2,24 +2,17 @@
 released; its observer (python/task_observer.cpp) takes the GIL every 50 ms of wall time to check
 for signals and calls the progress callback at most 10 times a second."""
 
-import os
-import signal
-import subprocess
-import sys
-import textwrap
 import time
 
 import pytest
 
 import thetad
+from interrupted import interrupt
 
 # A flight far longer than the test: only Ctrl-C ends it. It would write its result into `folder`
 # once flown; interrupted, nothing may be there. With "python", the controller is a Python class
 # (around theta-d), whose own code then usually receives the Ctrl-C.
-CHILD = textwrap.dedent("""
-    import sys, time
-    import thetad
-
+SETUP = """
     class Wrapped(thetad.Controller):
         def __init__(self):
             super().__init__()
@@ -34,33 +27,16 @@ CHILD = textwrap.dedent("""
     folder, kind = sys.argv[1:]
     controller = Wrapped() if kind == "python" else "theta-d"
     thetad.run("scenario-1", controller, duration=0.1, summary_only=True, timing=False)  # warm
-    print("flying", flush=True)
-    try:
-        thetad.run("scenario-1", controller, duration=3600.0, summary_only=True, timing=False).write(folder)
-        print("completed", flush=True)
-    except KeyboardInterrupt as stop:
-        print("interrupted", time.monotonic(), stop, flush=True)
-""")
+"""
+FLIGHT = 'thetad.run("scenario-1", controller, duration=3600.0, summary_only=True, timing=False).write(folder)'
 
 
 @pytest.mark.parametrize("kind", ["c++", "python"])
 def test_ctrl_c_stops_a_flight_within_a_second(tmp_path, kind):
     folder = tmp_path / "out"
     folder.mkdir()
-    child = subprocess.Popen([sys.executable, "-c", CHILD, str(folder), kind], stdout=subprocess.PIPE, text=True,
-                             env=dict(os.environ))
-    try:
-        assert child.stdout.readline().strip() == "flying"
-        time.sleep(1.0)
-        sent = time.monotonic()
-        child.send_signal(signal.SIGINT)
-        line = child.stdout.readline().split(maxsplit=2)
-        assert child.wait(timeout=30) == 0
-    finally:
-        child.kill()
-    assert line[0] == "interrupted", line
-    assert float(line[1]) - sent < 1.0, f"KeyboardInterrupt {float(line[1]) - sent:.2f} s after SIGINT"
-    assert "stopped at t = " in line[2] and "no result" in line[2]
+    message = interrupt(SETUP, FLIGHT, folder, kind)
+    assert "stopped at t = " in message and "no result" in message
     assert list(folder.iterdir()) == []
 
 

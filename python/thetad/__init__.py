@@ -2,7 +2,7 @@
 
 The numerics (care, lqr, dare, dlqr, lyap), the model (Helicopter), the registered controllers (controller,
 controllers), controllers written in Python (subclasses of Controller), flights (run, compare) and the
-workflows (bench, optimal, campaign_run) come from the C++ library through the extension module
+workflows (bench, optimal, campaign_run, tune) come from the C++ library through the extension module
 thetad._thetad; plot and campaign_report draw with the shipped scripts. docs/python.md is the guide.
 """
 
@@ -59,6 +59,7 @@ from ._thetad import (  # noqa: E402  (after the data folder is known)
     optimal,
     run,
     state_names,
+    tune,
     uncertainty_draw,
 )
 
@@ -72,5 +73,5 @@ __all__ = [
     "CampaignReport", "CareResult", "Controller", "DareResult", "DesignDefaults", "Error", "Helicopter", "Linearization",
     "Optimality", "Reference", "RegisteredController", "RunResult", "Trim", "bench", "campaign_report", "campaign_run",
     "care", "compare", "comparison_table", "controller", "controllers", "dare", "dlqr", "input_names", "linearize",
-    "load_plugin", "lqr", "lyap", "optimal", "plot", "run", "state_names", "uncertainty_draw",
+    "load_plugin", "lqr", "lyap", "optimal", "plot", "run", "state_names", "tune", "uncertainty_draw",
 ]

@@ -1,6 +1,7 @@
 // The closed-loop objective: θ–D flights over seeded draws through the experiment library, the
 // same for any number of workers, scored by the mean cost or RMS error, a diverged draw by +∞;
 // and its search within an evaluation budget, over θ–D's series or any controller's weights.
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -75,6 +76,26 @@ TEST(ClosedLoop, FliesEachSeedTheSameForAnyNumberOfWorkers) {
   EXPECT_EQ(mean_metric(a, Metric::cost), (a[0].cost + a[1].cost + a[2].cost) / 3.0);
   // The k, l flown are the ones asked for: the paper's k = l = 1 flies otherwise.
   EXPECT_NE(one.fly(series.given, {3})[0].cost, a[0].cost);
+}
+
+// A front end stops the draws through the observer of the calling thread (Python's Ctrl-C): its
+// exception ends fly() and the other worker's flight stops too, long before an hour is flown.
+TEST(ClosedLoop, AnObserverStopsEveryWorker) {
+  struct Stop {};
+  RunControls hour;
+  hour.duration = 3600.0;
+  const Parameterization series = series_parameters({}, 3, FitOptions{});
+  DrawFlights flights(kScenario, hour, series, 2);
+  double seen = 0.0;
+  flights.set_observer([&](double t) {
+    seen = t;
+    if (t >= 0.5) throw Stop{};
+  });
+  const auto start = std::chrono::steady_clock::now();
+  EXPECT_THROW(flights.fly(series.given, {1, 2, 3}), Stop);
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 30.0);
+  EXPECT_GE(seen, 0.5);
+  EXPECT_LT(seen, 1.0);
 }
 
 TEST(ClosedLoop, SearchKeepsItsBudgetAndReportsWhatItFlew) {

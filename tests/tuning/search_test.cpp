@@ -87,6 +87,52 @@ TEST(Search, StepsAroundInfiniteValues) {
   }
 }
 
+// COBYLA steps to NaN right after its first infinite value here (as on 20 s of scenario I with
+// two draws, where a draw diverged at l1 = 0.01): the objective is not asked there (a controller
+// refuses NaN settings), the point counts as diverged, and the search goes on towards the minimum.
+TEST(Search, DoesNotEvaluateANonFiniteStep) {
+  FitOptions options;
+  options.algorithm = "LN_COBYLA";
+  int calls = 0;
+  const FitResult fit = tuning::fit(
+      [&](const VectorXd& k, const VectorXd& l) {
+        ++calls;
+        EXPECT_TRUE(k.allFinite() && l.allFinite());
+        if (l[0] < 0.5) return std::numeric_limits<double>::infinity();
+        return 100.0 + 0.1 * (k[0] - 1.5) * (k[0] - 1.5) + 0.2 * (k[1] - 0.9) * (k[1] - 0.9) + 0.05 * l[0] +
+               0.01 * (l[1] - 2.0) * (l[1] - 2.0);
+      },
+      2, options);
+  EXPECT_LT(calls, fit.evaluations);  // the non-finite steps count as evaluations
+  EXPECT_LT(fit.residual, fit.start_residual - 0.05);
+  EXPECT_NEAR(fit.l[0], 0.5, 1e-3);  // at the edge of the diverging region, where the minimum is
+}
+
+// What the objective throws mid-search (a flight's error, Python's KeyboardInterrupt) leaves the
+// search as it was thrown, not as NLopt's "nlopt failure", and stops it at once.
+TEST(Search, RethrowsWhatTheObjectiveThrows) {
+  struct Stop {
+    int at;
+  };
+  for (const char* algorithm : {"LN_BOBYQA", "LN_COBYLA", "GN_DIRECT_L"}) {
+    FitOptions options;
+    options.algorithm = algorithm;
+    int calls = 0;
+    try {
+      tuning::fit(
+          [&](const VectorXd& k, const VectorXd& l) {
+            if (++calls == 5) throw Stop{calls};
+            return bowl(k, l);
+          },
+          2, options);
+      ADD_FAILURE() << algorithm << ": no exception";
+    } catch (const Stop& stop) {
+      EXPECT_EQ(stop.at, 5) << algorithm;
+    }
+    EXPECT_EQ(calls, 5) << algorithm;
+  }
+}
+
 TEST(FitOptionsCheck, BadOptionsGiveClearErrors) {
   const auto error_of = [](const FitOptions& options, int parameters = 2) -> std::string {
     try {
