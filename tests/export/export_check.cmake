@@ -3,11 +3,14 @@
 # thetad include or library; no exceptions, no RTTI, warnings as errors; its allocator aborts) and
 # run it: the exported double step must equal the library's u to 1e-12 (relative R-norm), the float
 # step to 1e-3 (measured at most 2.0e-4 over a whole flight with the paper's weights).
-# Arguments: THETAD (the program), CXX (the compiler), WORK_DIR; for a cross build, RUNNER (the
-# emulator command, its words separated by commas) and SKIP_WITHOUT (the programs the test needs,
-# comma-separated: an absent one skips it with a line the test's SKIP_REGULAR_EXPRESSION matches).
-string(REPLACE "," ";" RUNNER "${RUNNER}")
-string(REPLACE "," ";" SKIP_WITHOUT "${SKIP_WITHOUT}")
+# Arguments: THETAD (the program), CXX (the compiler), WORK_DIR; for a cross build, TARGET_FLAGS
+# (the target's compiler flags and extra sources), RUNNER (the emulator command) or BOARD (a
+# qemu-system-arm machine: the program runs bare-metal with semihosting), and SKIP_WITHOUT (the
+# programs the test needs: an absent one skips it with a line the test's SKIP_REGULAR_EXPRESSION
+# matches); lists with their items separated by commas.
+foreach(list TARGET_FLAGS RUNNER SKIP_WITHOUT)
+  string(REPLACE "," ";" ${list} "${${list}}")
+endforeach()
 foreach(program ${SKIP_WITHOUT})
   find_program(found ${program} NO_CACHE)
   if(NOT found)
@@ -28,13 +31,18 @@ foreach(spec "theta-d" "lqr" "theta-d-velocity=theta-d:${CMAKE_CURRENT_LIST_DIR}
   # the library's x86-64 build has none; with them the velocity feed-forward case differs by 1.1e-12
   # on aarch64 (a different rounding, docs/onboard.md), without them by 7e-16, as on x86.
   execute_process(COMMAND ${CXX} -std=c++20 -O2 -ffp-contract=off -fno-exceptions -fno-rtti -Wall -Wextra -Wpedantic -Werror
-                          -o ${WORK_DIR}/${label}_check ${WORK_DIR}/${label}_check.cpp
+                          ${TARGET_FLAGS} -o ${WORK_DIR}/${label}_check ${WORK_DIR}/${label}_check.cpp
                   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   if(NOT rc EQUAL 0)
     message(FATAL_ERROR "the exported ${label} does not compile standalone (${CXX}):\n${out}${err}")
   endif()
-  execute_process(COMMAND ${RUNNER} ${WORK_DIR}/${label}_check 1e-12 1e-3
-                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(BOARD)
+    set(run qemu-system-arm -M ${BOARD} -nographic -monitor none -semihosting-config enable=on,arg=check,arg=1e-12,arg=1e-3
+            -kernel ${WORK_DIR}/${label}_check)
+  else()
+    set(run ${RUNNER} ${WORK_DIR}/${label}_check 1e-12 1e-3)
+  endif()
+  execute_process(COMMAND ${run} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   message(STATUS "${out}${err}")
   if(NOT rc EQUAL 0)
     message(FATAL_ERROR "the exported ${label}'s check failed (${rc})")
