@@ -6,8 +6,9 @@
 // here). Besides, built directly: θ–D with N = 1 … 4 terms and 1 (one-step lag) or 3 (exact Ω,
 // docs/model.md §6.2) fixed-point passes; SDRE cold (solve_care: the matrix sign function, Schur as
 // fallback) and warm (Newton–Kleinman from the last P) with the same passes; θ–D's 3-term step on
-// dynamic-size types; the plant's F, B; and, as a reference for the Riccati solver, the SDRE step
-// with SLICOT's SB02MD in place of solve_care.
+// dynamic-size types; the plant's F, B; as a reference for the Riccati solver, the SDRE step
+// with SLICOT's SB02MD in place of solve_care; and the exported θ–D and LQR steps (docs/onboard.md)
+// in float and double, beside the registry's `theta-d` and `lqr` rows on the same states.
 //
 // The fixed-point tolerance is 0 in those θ–D and SDRE rows, so that "3 passes" always means 3:
 // the cost of the variant, not of how fast one trajectory happens to converge. The registry's
@@ -36,6 +37,10 @@
 #include "core/sim/helicopter_disturbances.hpp"
 #include "scenarios/scenario.hpp"
 #include "tests/controllers/every_pass_settings.hpp"
+// Exported by the build (export/CMakeLists.txt) at scenario I's start, where the registry's rows
+// are designed: the paper's θ–D (namespace theta_d) and the hover LQR (namespace lqr).
+#include "lqr.hpp"
+#include "theta-d.hpp"
 
 namespace {
 
@@ -117,6 +122,57 @@ void theta_d_step(benchmark::State& state, int terms, int passes, bool fixed_siz
   time_steps(state, controller);
 }
 
+// An exported step in Scalar on the recorded samples in order, from the second on, as time_steps()
+// times a library controller; the samples are converted to Scalar beforehand, untimed.
+template <class Scalar, class StepState, void (*reset)(StepState&),
+          thetad_onboard::Status (*step)(StepState&, Scalar, const Scalar*, const thetad_onboard::Reference<Scalar>&, Scalar*)>
+void exported_step(benchmark::State& state) {
+  struct Converted {
+    Scalar t, x[heli::kStateDim];
+    thetad_onboard::Reference<Scalar> reference;
+  };
+  const Recording& r = recording();
+  std::vector<Converted> samples(r.samples.size());
+  for (std::size_t k = 0; k < samples.size(); ++k) {
+    samples[k].t = Scalar(r.samples[k].t);
+    for (int i = 0; i < heli::kStateDim; ++i) samples[k].x[i] = Scalar(r.samples[k].state(i));
+    for (int i = 0; i < 3; ++i) {
+      samples[k].reference.position[i] = Scalar(r.samples[k].reference.position(i));
+      samples[k].reference.integral[i] = Scalar(r.samples[k].reference.integral(i));
+      samples[k].reference.velocity[i] = Scalar(r.samples[k].reference.velocity(i));
+      samples[k].reference.acceleration[i] = Scalar(r.samples[k].reference.acceleration(i));
+    }
+  }
+  const auto step_state = std::make_unique<StepState>();  // tens of KiB: not on the stack
+  reset(*step_state);
+  Scalar u[heli::kInputDim];
+  step(*step_state, samples[0].t, samples[0].x, samples[0].reference, u);
+  std::size_t k = 1;
+  double passes = 0.0;
+  for (auto _ : state) {
+    const Converted& s = samples[k];
+    if (step(*step_state, s.t, s.x, s.reference, u) != thetad_onboard::Status::ok) {
+      state.SkipWithError("the exported step failed");
+      break;
+    }
+    benchmark::DoNotOptimize(u);
+    benchmark::ClobberMemory();
+    if constexpr (requires { step_state->iterations; }) passes += step_state->iterations;
+    if (++k == samples.size()) k = 0;
+  }
+  state.counters["passes"] = benchmark::Counter(passes, benchmark::Counter::kAvgIterations);
+}
+
+template <class Scalar>
+void register_exported(const std::string& scalar) {
+  benchmark::RegisterBenchmark(("exported/theta-d/" + scalar).c_str(),
+                               exported_step<Scalar, theta_d::State<Scalar>, theta_d::reset<Scalar>, theta_d::step<Scalar>>)
+      ->Unit(benchmark::kMicrosecond);
+  benchmark::RegisterBenchmark(("exported/lqr/" + scalar).c_str(),
+                               exported_step<Scalar, lqr::State<Scalar>, lqr::reset<Scalar>, lqr::step<Scalar>>)
+      ->Unit(benchmark::kMicrosecond);
+}
+
 // F(x), B(x) at the recorded states and inputs, rotor speed from T_mr included: the whole sdc(),
 // and what a controller's step calls (sdc_constant() once, then sdc_varying()).
 void sdc_evaluation(benchmark::State& state, bool varying_only) {
@@ -189,6 +245,8 @@ void register_benchmarks() {
   benchmark::RegisterBenchmark("sdre-sb02md/passes:1", sdre_step_sb02md)->Unit(benchmark::kMicrosecond);
   benchmark::RegisterBenchmark("sdc", sdc_evaluation, false)->Unit(benchmark::kMicrosecond);
   benchmark::RegisterBenchmark("sdc-varying", sdc_evaluation, true)->Unit(benchmark::kMicrosecond);
+  register_exported<float>("float");
+  register_exported<double>("double");
   for (const std::string& name : thetad::ControllerRegistry::instance().names())
     benchmark::RegisterBenchmark(name.c_str(), registered_step, name)->Unit(benchmark::kMicrosecond);
 }

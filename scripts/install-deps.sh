@@ -17,6 +17,10 @@ packages=(
   jupyter-nbconvert python3-nbformat python3-ipykernel python3-tqdm
   libsqlite3-dev libopenmpi-dev openmpi-bin
   strace
+  # The exported controllers' cross builds (docs/onboard.md): aarch64 Linux run under qemu-user (a
+  # test), Cortex-M7 counted under qemu-system-arm, and callgrind's counts (scripts/onboard_counts.sh).
+  g++-aarch64-linux-gnu qemu-user
+  gcc-arm-none-eabi libnewlib-arm-none-eabi libstdc++-arm-none-eabi-newlib qemu-system-arm valgrind
 )
 
 # Extra packages for one target only (make fuzz: Clang and its libFuzzer runtime).
