@@ -20,6 +20,18 @@ namespace thetad::tuning {
 
 namespace {
 
+// Whether two flights start in the same state and command the same positions over the time flown
+// (sampled every controller period): then a validation on the second adds no new scenario.
+bool same_commands(const Flight& a, const Flight& b) {
+  if (a.settings().duration != b.settings().duration || a.scenario().initial_state != b.scenario().initial_state)
+    return false;
+  const double period = a.settings().controller_period();
+  for (double t = 0.0; t <= a.settings().duration; t += period) {
+    if (a.scenario().trajectory.position(t) != b.scenario().trajectory.position(t)) return false;
+  }
+  return true;
+}
+
 using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
@@ -208,6 +220,14 @@ TuningReport tune(const TuneOptions& a, Progress* shown, const std::function<voi
   std::optional<DrawFlights> holdout;
   const std::string holdout_scenario = a.holdout.empty() ? default_holdout(find_scenario(a.scenario)) : a.holdout;
   if (a.validation && !holdout_scenario.empty()) holdout.emplace(holdout_scenario, controls, parameters, a.threads);
+  if (holdout && same_commands(draws.flight(), holdout->flight())) {
+    char warning[320];
+    std::snprintf(warning, sizeof warning,
+                  "the held-out scenario %s commands the same motion as %s over the %g s flown: its validation is "
+                  "no test on another scenario (fly longer or name another holdout)",
+                  holdout->flight().scenario().name.c_str(), flight.scenario().name.c_str(), flight.settings().duration);
+    report.warnings.push_back(warning);
+  }
   const std::optional<TuningRecord> reused = closed_loop ? std::nullopt : reused_record(a, flight);
   prepare_output_folder(a.out);
 

@@ -119,6 +119,7 @@ Json to_json(const TuningReport& r) {
   j["setup_seconds"] = r.setup_seconds;
   j["fit_seconds"] = r.fit.seconds;
   j["threads"] = r.threads;
+  j["warnings"] = r.warnings;
   j["validation"] = Json::array();
   for (const HeldOutValidation& v : r.validations) j["validation"].push_back(to_json(v, r.scenario));
   j["provenance"] = to_json(r.provenance);

@@ -50,6 +50,9 @@ struct TuningReport {
   ObjectiveSettings objective;
   Eigen::Index samples = 0;    // of the record (sigma, entries)
   bool record_reused = false;
+  // What the caller should know about how the run was set up (a held-out scenario that commands
+  // the training scenario's motion over the flown time).
+  std::vector<std::string> warnings;
   int terms = 0;
   FitOptions options;
   FitResult fit;

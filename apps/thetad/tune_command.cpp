@@ -62,6 +62,7 @@ void print_report(const tuning::TuningReport& r) {
   std::string files;
   for (const std::filesystem::path& file : r.files) files += (files.empty() ? "" : ",") + file.string();
   std::printf("wrote=%s\n", files.c_str());
+  for (const std::string& warning : r.warnings) std::printf("warning=\"%s\"\n", warning.c_str());
 }
 
 }  // namespace

@@ -45,6 +45,10 @@ TEST(TuneRun, WritesItsReportAndReportsItsTasks) {
   EXPECT_EQ(nlohmann::ordered_json::parse(std::ifstream(report.files[1])), to_json(report));
   EXPECT_EQ(report.fit.evaluations, 2);
   EXPECT_EQ(report.validations.size(), 2u);
+  // Scenarios I and II take off alike: over one second the held-out one is no other scenario.
+  ASSERT_EQ(report.warnings.size(), 1u);
+  EXPECT_NE(report.warnings[0].find("the held-out scenario scenario-2 commands the same motion as scenario-1"),
+            std::string::npos);
 }
 
 TEST(TuneRun, AStoppedRunWritesNoResultFile) {
