@@ -31,22 +31,16 @@ ProgressObserver TaskObserver::tasks() {
 }
 
 std::function<void(double)> TaskObserver::signals(const std::string& label) {
-  return [this, label](double t) {
-    const Clock::time_point now = Clock::now();
-    if (now - last_check_ < kSignalPeriod) return;
-    last_check_ = now;
-    py::gil_scoped_acquire locked;
-    raise_pending_signal(label, t);
-  };
+  return [this, label](double t) { observe(label, t, false, false); };
 }
 
-void TaskObserver::observe(const std::string& label, double done, bool last) {
+void TaskObserver::observe(const std::string& label, double done, bool last, bool report) {
   const Clock::time_point now = Clock::now();
   if (!last && now - last_check_ < kSignalPeriod) return;
   last_check_ = now;
   py::gil_scoped_acquire locked;
   raise_pending_signal(label, done);
-  if (!progress_.is_none() && (last || now - last_report_ >= kProgressPeriod)) {
+  if (report && !progress_.is_none() && (last || now - last_report_ >= kProgressPeriod)) {
     last_report_ = now;
     progress_(done, total_);
   }

@@ -47,7 +47,9 @@ class TaskObserver {
   static constexpr std::chrono::milliseconds kSignalPeriod{50};
   static constexpr std::chrono::milliseconds kProgressPeriod{100};
 
-  void observe(const std::string& label, double done, bool last);
+  // Checks for signals (always when `last`, else at most every kSignalPeriod) and, when `report`,
+  // calls progress.
+  void observe(const std::string& label, double done, bool last, bool report = true);
   // Throws py::error_already_set when a signal handler raised: a KeyboardInterrupt that says where
   // the work `label` stopped, or whatever else the handler raised.
   void raise_pending_signal(const std::string& label, double done) const;
