@@ -11,6 +11,8 @@ Eigen::VectorXcd eigenvalues_of(const Eigen::Ref<const Eigen::MatrixXd>& A) {
 
 double max_real_eigenvalue(const Eigen::Ref<const Eigen::MatrixXd>& A) { return eigenvalues_of(A).real().maxCoeff(); }
 
+double operator_norm_of(const Eigen::Ref<const Eigen::MatrixXd>& A) { return Eigen::MatrixXd(A).operatorNorm(); }
+
 Eigen::VectorXd singular_values_of(const Eigen::Ref<const Eigen::MatrixXd>& A) {
   return Eigen::JacobiSVD<Eigen::MatrixXd>(A).singularValues();
 }

@@ -15,6 +15,10 @@ Eigen::VectorXcd eigenvalues_of(const Eigen::Ref<const Eigen::MatrixXd>& A);
 // The largest real part of an eigenvalue of A.
 double max_real_eigenvalue(const Eigen::Ref<const Eigen::MatrixXd>& A);
 
+// The operator 2-norm of A (its largest singular value): Eigen's operatorNorm(), which runs a
+// self-adjoint eigensolver.
+double operator_norm_of(const Eigen::Ref<const Eigen::MatrixXd>& A);
+
 // The singular values of A, largest first: Eigen::JacobiSVD(A).singularValues().
 Eigen::VectorXd singular_values_of(const Eigen::Ref<const Eigen::MatrixXd>& A);
 Eigen::VectorXd singular_values_of(const Eigen::Ref<const Eigen::MatrixXcd>& A);
