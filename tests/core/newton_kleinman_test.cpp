@@ -57,7 +57,7 @@ using Long = Eigen::Matrix<long double, Eigen::Dynamic, Eigen::Dynamic>;
 
 // Every long-double product goes through this one function, on plain matrices: each distinct
 // Eigen product expression (a chain of five products of |·| views) is its own instantiation of
-// the GEMM machinery, and GCC's overload resolution over such chains took ~25 s of this file's
+// the GEMM machinery, and GCC's overload resolution over such chains took ~20 s of this file's
 // compile (docs/performance-log.md, 2026-12-02). The same products, in the same order.
 Long times(const Long& X, const Long& Y) { return X * Y; }
 
