@@ -23,6 +23,7 @@
 #include "core/riccati.hpp"
 #include "tests/controllers/scenario_one_flight.hpp"
 #include "tests/heap_counter.hpp"
+#include "tests/linear_algebra.hpp"
 #include "tests/test_plants.hpp"
 
 namespace thetad {
@@ -47,7 +48,7 @@ ThetaDSettings plain_series(const MatrixXd& Q, const MatrixXd& R, int terms) {
 }
 
 double relative_error(const MatrixXd& approximation, const MatrixXd& exact) {
-  return (approximation - exact).operatorNorm() / exact.operatorNorm();
+  return testing::operator_norm_of(approximation - exact) / testing::operator_norm_of(exact);
 }
 
 // Relative 2-norm errors of the partial sums Σ_{i≤k} T_i, k = 0 … kHighestOrder, at (x; input).

@@ -13,6 +13,7 @@
 #include <Eigen/Dense>
 
 #include "tests/error_message.hpp"
+#include "tests/linear_algebra.hpp"
 
 namespace thetad {
 namespace {
@@ -45,7 +46,7 @@ void expect_valid_dare(const MatrixXd& A, const MatrixXd& B, const MatrixXd& Q, 
   EXPECT_LE(residual.norm(), tol * static_cast<double>(n) * kEps * terms) << "size of the terms " << terms;
   EXPECT_NEAR(result.relative_residual, residual.norm() / std::max(1.0, Q.norm()), 1e-13 * terms / std::max(1.0, Q.norm()));
   EXPECT_LT(result.closed_loop_eigenvalues.cwiseAbs().maxCoeff(), 1.0);
-  const Eigen::VectorXcd recomputed = Eigen::EigenSolver<MatrixXd>(A - B * result.K, false).eigenvalues();
+  const Eigen::VectorXcd recomputed = testing::eigenvalues_of(A - B * result.K);
   EXPECT_LT(recomputed.cwiseAbs().maxCoeff(), 1.0);
   EXPECT_GT(result.doublings, 0);
   EXPECT_LE(result.doublings, kDareDoublings);

@@ -13,6 +13,7 @@
 #include "core/error.hpp"
 #include "tests/core/helicopter_fixtures.hpp"
 #include "core/helicopter/forces.hpp"
+#include "tests/linear_algebra.hpp"
 
 namespace thetad::heli {
 namespace {
@@ -60,7 +61,7 @@ TEST(HelicopterReference, RestStateA0AndG0) {
 
   // Eigenvalues: 0 (x13; a Jordan chain theta -> u -> x_p -> x_i spreads them to ~eps^(1/4)),
   // -0.1, -5 +/- 16.583j, -5 +/- 11.568j.
-  const Eigen::VectorXcd eigenvalues = Eigen::EigenSolver<Eigen::MatrixXd>(F).eigenvalues();
+  const Eigen::VectorXcd eigenvalues = thetad::testing::eigenvalues_of(F);
   int zeros = 0;
   std::vector<std::complex<double>> others;
   for (const auto& lambda : eigenvalues) {

@@ -15,6 +15,7 @@
 
 #include "bench/care_problems.hpp"
 #include "core/riccati.hpp"
+#include "tests/linear_algebra.hpp"
 
 namespace thetad {
 namespace {
@@ -34,7 +35,7 @@ bool certified(const CareProblem& p, const MatrixXd& P) {
 
 double largest_real_part(const CareProblem& p, const MatrixXd& P) {
   const MatrixXd Ac = p.A - p.B * p.R.llt().solve(p.B.transpose() * P);
-  return Eigen::EigenSolver<MatrixXd>(Ac, false).eigenvalues().real().maxCoeff();
+  return testing::max_real_eigenvalue(Ac);
 }
 
 // Iterates P = P* + δS (S symmetric random) around the stabilizing solution P*, δ from 1e-6 to 10

@@ -13,6 +13,7 @@
 
 #include "core/error.hpp"
 #include "tests/heap_counter.hpp"
+#include "tests/linear_algebra.hpp"
 
 namespace thetad {
 namespace {
@@ -31,7 +32,7 @@ MatrixXd random_matrix(Eigen::Index rows, Eigen::Index cols, std::mt19937_64& rn
 // A non-normal stable matrix whose eigenvalues keep a margin of 0.5 from the imaginary axis.
 MatrixXd random_stable(Eigen::Index n, std::mt19937_64& rng) {
   MatrixXd A = random_matrix(n, n, rng) / std::sqrt(static_cast<double>(n));
-  const double max_real = Eigen::EigenSolver<MatrixXd>(A, false).eigenvalues().real().maxCoeff();
+  const double max_real = testing::max_real_eigenvalue(A);
   A -= (max_real + 0.5) * MatrixXd::Identity(n, n);
   return A;
 }

@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/linear_algebra.hpp"
+
 namespace thetad {
 namespace {
 
@@ -26,8 +28,8 @@ struct KnownSign {
 KnownSign known_sign(const VectorXd& eigenvalues, const MatrixXd& V) {
   const Eigen::Index n = eigenvalues.size();
   const Eigen::PartialPivLU<MatrixXd> lu(V);
-  const Eigen::JacobiSVD<MatrixXd> svd(V);
-  const double kappa = svd.singularValues()(0) / svd.singularValues()(n - 1);
+  const VectorXd singular = testing::singular_values_of(V);
+  const double kappa = singular(0) / singular(n - 1);
   double divided_difference = 0.0;
   for (Eigen::Index i = 0; i < n; ++i)
     for (Eigen::Index j = 0; j < n; ++j)

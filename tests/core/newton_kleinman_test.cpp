@@ -22,6 +22,7 @@
 #include "core/riccati.hpp"
 #include "tests/core/care_checks.hpp"
 #include "tests/error_message.hpp"
+#include "tests/linear_algebra.hpp"
 
 namespace thetad {
 namespace {
@@ -52,18 +53,27 @@ struct Residual {
   double rounding;
 };
 
+using Long = Eigen::Matrix<long double, Eigen::Dynamic, Eigen::Dynamic>;
+
+// Every long-double product goes through this one function, on plain matrices: each distinct
+// Eigen product expression (a chain of five products of |·| views) is its own instantiation of
+// the GEMM machinery, and GCC's overload resolution over such chains took ~20 s of this file's
+// compile (docs/performance-log.md, 2026-12-02). The same products, in the same order.
+Long times(const Long& X, const Long& Y) { return X * Y; }
+
 Residual residual_of(const CareProblem& p, const MatrixXd& P_double) {
-  using Long = Eigen::Matrix<long double, Eigen::Dynamic, Eigen::Dynamic>;
   const Long A = p.A.cast<long double>(), B = p.B.cast<long double>(), Q = p.Q.cast<long double>();
   const Long P = P_double.cast<long double>();
   const Long R_inverse = p.R.cast<long double>().inverse();
-  const Long G = B * R_inverse * B.transpose();
-  const Long AtP = A.transpose() * P;
-  const Long PGP = P * G * P;
+  const Long At = A.transpose(), Bt = B.transpose();
+  const Long G = times(times(B, R_inverse), Bt);
+  const Long AtP = times(At, P);
+  const Long PGP = times(times(P, G), P);
   const long double res = (AtP + AtP.transpose() - PGP + Q).norm();
   const long double terms = Q.norm() + 2.0L * AtP.norm() + PGP.norm();
-  const Long absolute = Q.cwiseAbs() + 2.0L * A.cwiseAbs().transpose() * P.cwiseAbs() +
-                        P.cwiseAbs() * B.cwiseAbs() * R_inverse.cwiseAbs() * B.cwiseAbs().transpose() * P.cwiseAbs();
+  const Long abs_P = P.cwiseAbs(), abs_B = B.cwiseAbs(), abs_Bt = Bt.cwiseAbs();
+  const Long absolute = Q.cwiseAbs() + 2.0L * times(At.cwiseAbs(), abs_P) +
+                        times(times(times(times(abs_P, abs_B), R_inverse.cwiseAbs()), abs_Bt), abs_P);
   // In long double too: its exponent range holds the squares of weights scaled by 1e±300.
   const long double q_scale = std::max(1.0L, Q.norm());
   return {static_cast<double>(res / q_scale), static_cast<double>(res / terms),
@@ -72,7 +82,7 @@ Residual residual_of(const CareProblem& p, const MatrixXd& P_double) {
 
 bool stabilizes(const CareProblem& p, const MatrixXd& P) {
   const MatrixXd Ac = p.A - p.B * p.R.llt().solve(p.B.transpose() * P);
-  return Eigen::EigenSolver<MatrixXd>(Ac, false).eigenvalues().real().maxCoeff() < 0.0;
+  return testing::max_real_eigenvalue(Ac) < 0.0;
 }
 
 // The problems: the paper's, the paper's with every rate 18 times faster (A·18: the one the issue
@@ -258,7 +268,7 @@ TEST(NewtonKleinman, TheLyapunovCertificateSparesSchurFormsAndReportsNoEigenvalu
     EXPECT_LE((result.P - reference).norm(), 1e-10 * reference.norm()) << "call " << k;
     EXPECT_LE(residual_of(next, result.P).to_terms, by_certificate.tolerance() + 64.0 * kEps);
     // Every other property of a solution, with the spectrum recomputed here.
-    result.closed_loop_eigenvalues = Eigen::EigenSolver<MatrixXd>(next.A - next.B * result.K, false).eigenvalues();
+    result.closed_loop_eigenvalues = testing::eigenvalues_of(next.A - next.B * result.K);
     expect_valid_care(next.A, next.B, next.Q, next.R, result);
     P = result.P;
   }

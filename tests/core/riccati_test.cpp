@@ -19,6 +19,7 @@
 #include "tests/core/care_checks.hpp"
 #include "tests/core/care_fixture.hpp"
 #include "tests/error_message.hpp"
+#include "tests/linear_algebra.hpp"
 
 namespace thetad {
 namespace {
@@ -48,7 +49,7 @@ TEST(SolveCare, CrossTerm) {
   const MatrixXd residual = A.transpose() * result.P + result.P * A - coupling.transpose() * R.llt().solve(coupling) + Q;
   EXPECT_LE(residual.norm(), 1e-13 * result.P.norm() * A.norm());
   EXPECT_LE((R * result.K - coupling).norm(), 1e-13 * coupling.norm());
-  const Eigen::VectorXcd closed_loop = Eigen::EigenSolver<MatrixXd>(A - B * result.K, false).eigenvalues();
+  const Eigen::VectorXcd closed_loop = testing::eigenvalues_of(A - B * result.K);
   EXPECT_LT(closed_loop.real().maxCoeff(), 0.0);
   EXPECT_THAT(error_message([&] { solve_care(A, B, Q, R, MatrixXd::Zero(2, 3)); }),
               HasSubstr("CARE: N is 2x3 but B is 3x2"));
@@ -100,7 +101,7 @@ TEST(SolveCare, RandomStabilizableSystems) {
       // unsolvable: ‖P‖ grows like the inverse of a controllability measure that decays
       // exponentially with their number.
       MatrixXd A = random(n, n) / std::sqrt(double(n));
-      VectorXd real = Eigen::EigenSolver<MatrixXd>(A, false).eigenvalues().real();
+      VectorXd real = testing::eigenvalues_of(A).real();
       std::sort(real.begin(), real.end(), std::greater<>());
       const int unstable = std::min(n, 1 + n % 3);
       const double shift = 0.2 - real(unstable - 1);
@@ -110,7 +111,7 @@ TEST(SolveCare, RandomStabilizableSystems) {
       const MatrixXd Q = C.transpose() * C;
       const MatrixXd M = random(m, m);
       const MatrixXd R = M * M.transpose() + 0.1 * MatrixXd::Identity(m, m);
-      if (Eigen::EigenSolver<MatrixXd>(A, false).eigenvalues().real().maxCoeff() > 0) ++unstable_systems;
+      if (testing::max_real_eigenvalue(A) > 0) ++unstable_systems;
       SCOPED_TRACE("n=" + std::to_string(n) + " m=" + std::to_string(m));
       for (const auto& [method, method_name] : kMethods) {
         SCOPED_TRACE(method_name);

@@ -11,6 +11,7 @@
 #include <Eigen/SVD>
 
 #include "core/error.hpp"
+#include "tests/linear_algebra.hpp"
 
 namespace thetad {
 namespace {
@@ -70,7 +71,7 @@ TEST(StabilizabilityMargin, CountsAZeroEigenvalueOfAJordanBlock) {
 double margin_by_definition(const MatrixXd& A, const MatrixXd& B, const MatrixXd& R) {
   const Eigen::SelfAdjointEigenSolver<MatrixXd> r(R);
   const MatrixXd root_inverse = r.operatorInverseSqrt();
-  const Eigen::VectorXcd eigenvalues = A.eigenvalues();
+  const Eigen::VectorXcd eigenvalues = testing::eigenvalues_of(A);
   const auto n = A.rows(), m = B.cols();
   double margin = kInf;
   for (Eigen::Index k = 0; k < n; ++k) {
@@ -78,7 +79,7 @@ double margin_by_definition(const MatrixXd& A, const MatrixXd& B, const MatrixXd
     Eigen::MatrixXcd pencil(n, n + m);
     pencil.leftCols(n) = A.cast<std::complex<double>>() - eigenvalues[k] * Eigen::MatrixXcd::Identity(n, n);
     pencil.rightCols(m) = (B * root_inverse).cast<std::complex<double>>();
-    margin = std::min(margin, Eigen::JacobiSVD<Eigen::MatrixXcd>(pencil).singularValues()(n - 1));
+    margin = std::min(margin, testing::singular_values_of(pencil)(n - 1));
   }
   return margin;
 }

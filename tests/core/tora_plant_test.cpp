@@ -15,6 +15,7 @@
 #include "core/error.hpp"
 #include "tests/central_differences.hpp"
 #include "tests/error_message.hpp"
+#include "tests/linear_algebra.hpp"
 
 namespace thetad {
 namespace {
@@ -56,12 +57,12 @@ TEST(ToraPlant, TheJacobianIsTheDerivativeOfF) {
 double pbh_margin(const ToraPlant& plant, const Eigen::Vector4d& x) {
   const auto [F, B] = plant.sdc(x, Eigen::VectorXd::Zero(1));
   double smallest = 1e300;
-  const Eigen::VectorXcd eigenvalues = Eigen::EigenSolver<Eigen::MatrixXd>(F).eigenvalues();
+  const Eigen::VectorXcd eigenvalues = testing::eigenvalues_of(F);
   for (const std::complex<double>& lambda : eigenvalues) {
     Eigen::MatrixXcd pencil(4, 5);
     pencil.leftCols(4) = F.cast<std::complex<double>>() - lambda * Eigen::MatrixXcd::Identity(4, 4);
     pencil.rightCols(1) = B.cast<std::complex<double>>();
-    smallest = std::min(smallest, Eigen::JacobiSVD<Eigen::MatrixXcd>(pencil).singularValues().minCoeff());
+    smallest = std::min(smallest, testing::singular_values_of(pencil).minCoeff());
   }
   return smallest;
 }

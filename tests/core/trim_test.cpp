@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.hpp"
+#include "tests/linear_algebra.hpp"
 
 namespace thetad {
 namespace {
@@ -166,7 +167,7 @@ TEST(Trim, HoverWithZeroCollectiveIsExactlyDetermined) {
       jacobian(i, j) = (dp[row] - dm[row]) / (2.0 * h);
     }
   }
-  const Eigen::VectorXd singular = Eigen::JacobiSVD<Eigen::MatrixXd>(jacobian).singularValues();
+  const Eigen::VectorXd singular = testing::singular_values_of(jacobian);
   EXPECT_GT(singular.minCoeff() / singular.maxCoeff(), 1e-8) << "singular values " << singular.transpose();
 }
 
@@ -303,9 +304,9 @@ TEST(Trim, ImpossibleRequestThrowsWithIpoptStatus) {
     FAIL() << "expected thetad::Error";
   } catch (const Error& e) {
     std::printf("  message: %s\n", e.what());
-    EXPECT_THAT(e.what(), testing::HasSubstr("V_ned = (200, 0, 0) m/s"));
-    EXPECT_THAT(e.what(), testing::HasSubstr("Ipopt did not converge (status Invalid_Number_Detected"));
-    EXPECT_THAT(e.what(), testing::HasSubstr("f has no value at the final iterate"));
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("V_ned = (200, 0, 0) m/s"));
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("Ipopt did not converge (status Invalid_Number_Detected"));
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("f has no value at the final iterate"));
   }
 }
 
