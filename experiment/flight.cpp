@@ -7,6 +7,7 @@
 #include "core/error.hpp"
 #include "core/helicopter/designed_weights.hpp"
 #include "core/text_file.hpp"
+#include "experiment/disturbance_effects.hpp"
 #include "settings/settings.hpp"
 #include "experiment/build_info.hpp"
 #include "experiment/controller_build.hpp"
@@ -109,23 +110,21 @@ std::unique_ptr<sim::Disturbances> Flight::make_disturbances() const {
 }
 
 std::string Flight::disturbances() const {
-  const auto on = [](bool value) { return value ? "on" : "off"; };
-  const sim::NoiseSettings& noise = settings_.noise;
-  const bool all = settings_.parameter_uncertainty && settings_.wind_gust.enabled && noise.measurement &&
-                   noise.actuator && noise.wind_component && noise.induced_velocity;
-  const bool none = !settings_.parameter_uncertainty && !settings_.wind_gust.enabled && !noise.measurement &&
-                    !noise.actuator && !noise.wind_component && !noise.induced_velocity;
+  std::vector<std::string> paper, beyond;
+  for (const DisturbanceSource& source : active_sources(settings_)) (source.paper ? paper : beyond).push_back(source.name);
   const char* limits = settings_.actuator_limits.enabled ? "; actuator limits on" : "; no actuator limits";
-  if (all) return std::string("all disturbances (the paper's)") + limits;
-  if (none && !settings_.actuator_limits.enabled) return "ideal (no uncertainty, noise, wind or actuator limits)";
-  if (none) return std::string("no uncertainty, noise or wind") + limits;
-  char text[256];
-  std::snprintf(text, sizeof text,
-                "uncertainty %s, wind gust %s, measurement noise %s, actuator noise %s, wind noise %s, "
-                "induced-velocity noise %s",
-                on(settings_.parameter_uncertainty), on(settings_.wind_gust.enabled), on(noise.measurement),
-                on(noise.actuator), on(noise.wind_component), on(noise.induced_velocity));
-  return text + std::string(limits);
+  const auto listed = [](const std::vector<std::string>& names) {
+    std::string text;
+    for (const std::string& name : names) text += (text.empty() ? "" : ", ") + name;
+    return text;
+  };
+  if (paper.empty() && beyond.empty())
+    return settings_.actuator_limits.enabled ? std::string("no uncertainty, noise or wind") + limits
+                                             : "ideal (no uncertainty, noise, wind or actuator limits)";
+  const std::string papers = paper.size() == kPaperDisturbanceSources ? "all disturbances (the paper's)"
+                             : paper.empty()                ? "none of the paper's disturbances"
+                                                            : "of the paper's disturbances " + listed(paper);
+  return papers + (beyond.empty() ? "" : "; beyond them " + listed(beyond)) + limits;
 }
 
 void Flight::set_keep_log(bool keep) {

@@ -8,7 +8,7 @@
 
 #include "core/error.hpp"
 #include "tuning/paired_bootstrap.hpp"
-#include "tuning/parallel.hpp"
+#include "core/parallel.hpp"
 #include "tuning/sigma_fit.hpp"
 
 namespace thetad::tuning {

@@ -6,7 +6,7 @@
 
 #include "controllers/theta_d.hpp"
 #include "core/error.hpp"
-#include "tuning/parallel.hpp"
+#include "core/parallel.hpp"
 
 namespace thetad::tuning {
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 
 #include "core/error.hpp"
-#include "tuning/parallel.hpp"
+#include "core/parallel.hpp"
 
 namespace thetad::tuning {
 

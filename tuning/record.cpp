@@ -12,7 +12,7 @@
 #include "core/error.hpp"
 #include "core/text_file.hpp"
 #include "tuning/packed_series.hpp"
-#include "tuning/parallel.hpp"
+#include "core/parallel.hpp"
 #include "tuning/sigma_fit.hpp"
 
 namespace thetad::tuning {

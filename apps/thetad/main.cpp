@@ -13,6 +13,7 @@
 #include "apps/thetad/demo_command.hpp"
 #include "apps/thetad/plot_command.hpp"
 #include "apps/thetad/design_lqr_command.hpp"
+#include "apps/thetad/disturbances_command.hpp"
 #include "apps/thetad/export_command.hpp"
 #include "apps/thetad/weights_command.hpp"
 #include "apps/thetad/optimal_command.hpp"
@@ -71,6 +72,8 @@ int main(int argc, char** argv) {
   auto* optimal = thetad::app::add_optimal_command(app, optimal_arguments);
   thetad::app::ExportArguments export_arguments;
   auto* export_command = thetad::app::add_export_command(app, export_arguments);
+  thetad::app::DisturbancesArguments disturbances_arguments;
+  auto* disturbances = thetad::app::add_disturbances_command(app, disturbances_arguments);
 
   try {
     app.parse(argc, argv);
@@ -94,6 +97,7 @@ int main(int argc, char** argv) {
     if (*campaign) return thetad::app::run_campaign_command(campaign_arguments);
     if (*optimal) return thetad::app::run_optimal(optimal_arguments);
     if (*export_command) return thetad::app::run_export(export_arguments);
+    if (*disturbances) return thetad::app::run_disturbances(disturbances_arguments);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "thetad: error: %s\n", thetad::escaped_utf8(e.what()).c_str());
     return 1;

@@ -82,6 +82,14 @@ TEST(Flight, ActuatorLimitsAreOnByDefaultAndIdealOrTheSwitchTurnsThemOff) {
   const Flight unlimited(scenario, off);
   EXPECT_FALSE(unlimited.settings().actuator_limits.enabled);
   EXPECT_EQ(unlimited.disturbances(), "all disturbances (the paper's); no actuator limits");
+
+  // Some of the paper's and some beyond them (docs/model.md §15): named.
+  RunControls some = seconds(0.1);
+  some.wind_gust = false;
+  some.noise_scale = 0.0;
+  some.turbulence_model = thetad::sim::TurbulenceSettings::Model::dryden;
+  EXPECT_EQ(Flight(scenario, some).disturbances(),
+            "of the paper's disturbances parameter_uncertainty; beyond them turbulence; actuator limits on");
 }
 
 TEST(Flight, DisturbanceScalesAndTheInitialOffsetOverrideTheScenario) {

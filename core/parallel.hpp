@@ -7,7 +7,7 @@
 #include <thread>
 #include <vector>
 
-namespace thetad::tuning {
+namespace thetad {
 
 // Runs work(worker, chunk, begin, end) for the chunks [c·chunk_size, min((c+1)·chunk_size, count))
 // of 0 … count−1, chunk c on worker c mod workers. The chunks do not depend on the number of
@@ -34,4 +34,4 @@ inline void for_each_chunk(std::size_t count, std::size_t chunk_size, int worker
     if (failure) std::rethrow_exception(failure);
 }
 
-}  // namespace thetad::tuning
+}  // namespace thetad
