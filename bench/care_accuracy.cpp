@@ -8,7 +8,7 @@
 //   care_accuracy write-ill-r DIR [COUNT]  instead: n = 6, m = 3 problems with κ(R) in 1e7 … 1e10
 //                                          (as CAREX 2.2), default 16
 //   /usr/bin/python3 scripts/care_reference.py DIR    their reference solutions, DIR/NAME.ref
-//   care_accuracy compare DIR               the table in docs/performance.md
+//   care_accuracy compare DIR               the table in docs/riccati.md
 //
 // The residual alone cannot rank solvers on these problems: the exact solution rounded to double
 // precision already has a relative residual of 1e-10 … 1e-7 (the column "rounded"), because the

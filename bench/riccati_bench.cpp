@@ -1,6 +1,6 @@
 // Riccati and Lyapunov solvers: thetad against SLICOT SB02MD and against the alternative ways
 // of solving the θ–D Lyapunov equations, on the same problems in the same process.
-// docs/performance.md explains the rows and records a run.
+// docs/riccati.md explains the rows and records a run.
 
 #include <benchmark/benchmark.h>
 

@@ -16,7 +16,7 @@ enum class StabilityProof {
   // LyapunovCertificate (lyapunov_certificate.hpp) when it holds, the spectrum otherwise; when it
   // held, CareResult::closed_loop_eigenvalues are NaN. For a caller that needs P and not the
   // eigenvalues, as the SDRE: it spares the warm step one Schur form per call and the cold step
-  // an eigensolver (docs/performance.md).
+  // an eigensolver (docs/riccati.md).
   lyapunov,
 };
 

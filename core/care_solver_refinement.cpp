@@ -63,7 +63,7 @@ int CareSolver::Workspace::refine(const MatrixRef& A) {
 }
 
 // Whether the terms of the equation dwarf Q, so that a residual in double precision is mostly
-// rounding and the direct solution's forward error can exceed SB02OD's (docs/performance.md).
+// rounding and the direct solution's forward error can exceed SB02OD's (docs/riccati.md).
 bool CareSolver::Workspace::terms_dwarf_q(const MatrixRef& A) const {
   const double p_norm = care::frobenius_norm(candidate.P);
   const double terms = 2.0 * care::frobenius_norm(A) * p_norm + g_norm * p_norm * p_norm;

@@ -8,7 +8,7 @@
 //    θ–D recursion does (docs/model.md §8.1: every T_i, i ≥ 1, solves L(T) = T Ac0 + Ac0' T
 //    = e_i W_i with the same constant Ac0). Everything that depends on Ac alone is paid once at
 //    construction; a solve is then one dense matrix–vector product and allocates nothing.
-//    docs/performance.md has the measurements behind this choice.
+//    docs/riccati.md has the measurements behind this choice.
 
 #include <Eigen/Dense>
 
@@ -31,7 +31,7 @@ Eigen::MatrixXd solve_lyapunov(const Eigen::Ref<const Eigen::MatrixXd>& A,
 // The Schur form is Eigen's RealSchur and the quasi-triangular equation T'Y + YT = C is solved by
 // a block sweep written here, which visits only the lower half when C is symmetric: measured in
 // bench/riccati_bench.cpp against LAPACK dgees + dtrsyl (the reference LAPACK of Debian), on the
-// closed loops of the paper's problem (docs/performance.md).
+// closed loops of the paper's problem (docs/riccati.md).
 class LyapunovWorkspace {
  public:
   explicit LyapunovWorkspace(Eigen::Index n);
@@ -100,7 +100,7 @@ class ConstantLyapunovSolver {
   double max_real_eigenvalue() const { return max_real_eigenvalue_; }
 
   // The packed operator itself, for callers that solve only some unknowns or precompute the
-  // solutions of fixed right sides (θ–D, docs/performance.md): x = packed_inverse() * q, with q
+  // solutions of fixed right sides (θ–D, docs/riccati.md): x = packed_inverse() * q, with q
   // and x the upper triangles in packed_index order, solves Ac'X + XAc + Q = 0.
   const Eigen::MatrixXd& packed_inverse() const { return inverse_; }
   // Position of x_ij (i ≤ j) in the packed vector: upper triangle, column by column, as LAPACK's

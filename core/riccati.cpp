@@ -92,7 +92,7 @@ void CareSolver::Workspace::scale_hamiltonian() {
 
 // For the sign function, one scalar that gives G and Q the same 1-norm, as SB02MD's SCAL = 'G'
 // (D = diag(I, sI) keeps H Hamiltonian). Measured against 40-digit reference solutions (see
-// docs/performance.md): with it the sign function's forward error on the paper problem is
+// docs/riccati.md): with it the sign function's forward error on the paper problem is
 // ~1e-15 and on random paper-scaled problems on a par with SB02MD; with the Schur method's
 // balancing instead it was larger on 9 of those 13 problems (1.4× in geometric mean).
 void CareSolver::Workspace::equilibrate() {
@@ -112,7 +112,7 @@ void CareSolver::Workspace::equilibrate() {
 // equilibrated H: alone, it left weights scaled by 1e50 (Q·s, R·s, hence P·s) with a balanced H
 // of norm 5e18 and refused them as having eigenvalues on the imaginary axis; from the
 // equilibrated H, whose blocks do not depend on s, the paper's problem is solved to 3e-15 from
-// s = 1e-300 to 1e300, and the accuracy on random problems stayed where it was (docs/performance.md).
+// s = 1e-300 to 1e300, and the accuracy on random problems stayed where it was (docs/riccati.md).
 void CareSolver::Workspace::balance() {
   const auto n2 = static_cast<lapack_int>(2 * n);
   equilibrate();

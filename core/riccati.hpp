@@ -31,14 +31,14 @@
 namespace thetad {
 
 // How solve_care finds the stable invariant subspace of the Hamiltonian
-// H = [A, −G; −Q, −A'], G = B R⁻¹ B'. docs/performance.md compares them with SLICOT SB02MD.
+// H = [A, −G; −Q, −A'], G = B R⁻¹ B'. docs/riccati.md compares them with SLICOT SB02MD.
 enum class CareMethod {
   // The matrix sign function, and Laub's Schur method whenever the sign iteration fails (a
   // Hamiltonian eigenvalue on or near the imaginary axis, no stabilizing solution) or its
   // solution is not backward stable: the speed of the first, the diagnostics of the second. Then,
   // on equations whose terms dwarf Q (weights spanning decades), one Newton step with the
   // residual in compensated arithmetic (care_refinement.hpp), which brings the forward error to
-  // that of SLICOT SB02OD or below (docs/performance.md).
+  // that of SLICOT SB02OD or below (docs/riccati.md).
   automatic,
   // Newton's iteration for sign(H); P from the null space of sign(H) + I (Roberts 1971, Byers
   // 1987). 8–13 inversions of the 2n×2n H instead of an ordered Schur form: faster at the

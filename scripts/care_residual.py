@@ -6,7 +6,7 @@ COLS" followed by ROWS lines of numbers, holding A, B, Q, R and any number of so
 block name starts with P. Each P is taken as exact (its double-precision digits) and
 ‖A'P + PA − P B R⁻¹ B' P + Q‖_F / max(1, ‖Q‖_F) is printed, the formula of
 CareResult::relative_residual, with no rounding of its own: what a solver reports can be checked
-against it (docs/performance.md, "Newton–Kleinman: the residual it reports").
+against it (docs/performance-log.md, "Newton–Kleinman: the residual it reports").
 
     /usr/bin/python3 scripts/care_residual.py FILE...
 """

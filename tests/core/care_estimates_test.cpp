@@ -1,6 +1,6 @@
 // CareResult::forward_error and condition (ErrorEstimates::on) against the true forward error,
 // from 40-digit solutions (tests/fixtures/care_reference, scripts/make_care_reference_fixtures.py):
-// the CAREX examples and problems of the accuracy study (docs/performance.md). The bar: where the
+// the CAREX examples and problems of the accuracy study (docs/riccati.md). The bar: where the
 // true error exceeds 100·n·eps the estimate is within 100× of it, and it is never below a tenth of
 // it. All three methods, so that the larger errors of the sign function and of the Schur method on
 // the spread problems are estimated too, not only the refined default's.

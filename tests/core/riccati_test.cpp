@@ -195,7 +195,7 @@ void expect_paper_solution(const PaperPlant& plant, const CareResult& result) {
 
 TEST(SolveCare, PaperSizedCaseMatchesSpec) {
   const PaperPlant plant;
-  // automatic takes the sign function here (docs/performance.md: faster than SB02MD).
+  // automatic takes the sign function here (docs/riccati.md: faster than SB02MD).
   EXPECT_GT(solve_care(plant.A, plant.B, plant.Q, plant.R).sign_iterations, 0);
   for (const auto& [method, method_name] : kMethods) {
     SCOPED_TRACE(method_name);
@@ -223,7 +223,7 @@ const std::map<std::string, CarexExpectation> kCarex = {
                    "R nearly singular: κ(R)·u = 4.4e-8, and G = BR⁻¹B' formed from it is already 1.0e-8 off "
                    "(against 50 digits); the scipy P, from the extended pencil without R⁻¹, is within 4.5e-13 "
                    "of a 60-digit solution. Measured: Schur 8.8e-9, SB02MD 8.7e-9, sign 2.8e-8; on random "
-                   "problems with such R neither method is the more accurate (docs/performance.md)"}},
+                   "problems with such R neither method is the more accurate (docs/riccati.md)"}},
     {"carex_2_3", {1e-13, 1e-8, "ill conditioned for large eps"}},
     {"carex_2_4", {1e-13, 1e-8, "ill-conditioned Hamiltonian (eps = 1e-7)"}},
     {"carex_2_6", {1e-12, 1e-8, "badly scaled Hamiltonian, scipy is off by 2e-3 here: compared to X_exact"}},
