@@ -13,16 +13,18 @@ namespace thetad::tuning {
 const char* metric_name(Metric metric) {
   switch (metric) {
     case Metric::cost: return "cost";
-    case Metric::rms_error: return "rms-error";
+    case Metric::rms_error: return "rms_error_m";
     default: return "cost-dev";
   }
 }
 
 Metric parse_metric(const std::string& name) {
   if (name == "cost") return Metric::cost;
-  if (name == "rms-error") return Metric::rms_error;
+  // "rms-error": the name before docs/glossary.md ("θ–D settings and tuning"), still accepted so that
+  // earlier command lines and Python calls keep working.
+  if (name == "rms_error_m" || name == "rms-error") return Metric::rms_error;
   if (name == "cost-dev") return Metric::cost_dev;
-  throw Error("tuning: unknown metric '" + name + "' (known: cost, rms-error, cost-dev)");
+  throw Error("tuning: unknown metric '" + name + "' (known: cost, rms_error_m, cost-dev)");
 }
 
 double metric_value(const sim::RunSummary& summary, Metric metric) {

@@ -48,8 +48,8 @@ DrawSeeds draw_seeds(std::uint64_t training_first, int training, std::uint64_t h
   return seeds;
 }
 
-int HeldOutValidation::diverged_default() const { return not_completed(default_runs); }
-int HeldOutValidation::diverged_tuned() const { return not_completed(tuned_runs); }
+int HeldOutValidation::default_not_completed() const { return not_completed(default_runs); }
+int HeldOutValidation::tuned_not_completed() const { return not_completed(tuned_runs); }
 
 HeldOutValidation validate_held_out(DrawFlights& flights, const Eigen::VectorXd& tuned,
                                     const std::vector<std::uint64_t>& seeds, std::uint64_t bootstrap_seed, int resamples) {

@@ -43,8 +43,9 @@ struct HeldOutValidation {
   std::optional<PairedComparison> cost_dev;  // where the runs have J_dev
 
   int pairs() const { return cost.difference.count; }
-  int diverged_default() const;
-  int diverged_tuned() const;
+  // Draws that diverged or failed (docs/glossary.md, "How a run ended").
+  int default_not_completed() const;
+  int tuned_not_completed() const;
 };
 
 // Flies the default (the controller as given) and the tuned one (at `tuned`, a point of the

@@ -5,7 +5,7 @@
 #include <cstdio>
 
 #include "core/error.hpp"
-#include "experiment/run_result.hpp"
+#include "core/sim/run_summary.hpp"
 
 namespace thetad::tuning {
 
@@ -23,11 +23,11 @@ Json to_json(const PairedComparison& c) {
           {"default_median", c.default_median},
           {"tuned_median", c.tuned_median},
           {"difference_median", c.difference.median},
-          {"difference_interval", {number(c.difference.low), number(c.difference.high)}}};
+          {"difference_ci95", {number(c.difference.low), number(c.difference.high)}}};
 }
 
 Json to_json(const sim::RunSummary& run) {
-  Json j = {{"status", status_text(run)}, {"cost", run.cost}};
+  Json j = {{"status", sim::status_name(run.status)}, {"end_time_s", run.end_time}, {"cost", run.cost}};
   if (run.cost_dev) j["cost_dev"] = *run.cost_dev;
   j["rms_error_m"] = run.rms_tracking_error.norm();
   return j;
@@ -38,14 +38,14 @@ Json to_json(const HeldOutValidation& v, const std::string& tuning_scenario) {
   for (std::size_t i = 0; i < v.seeds.size(); ++i)
     runs.push_back({{"seed", v.seeds[i]}, {"default", to_json(v.default_runs[i])}, {"tuned", to_json(v.tuned_runs[i])}});
   Json j = {{"scenario", v.scenario},
-          {"role", v.scenario == tuning_scenario ? "tuning scenario" : "held-out scenario"},
+          {"role", v.scenario == tuning_scenario ? "tuning_scenario" : "held_out_scenario"},
           {"draws", v.seeds.size()},
           {"pairs", v.pairs()},
-          {"diverged_default", v.diverged_default()},
-          {"diverged_tuned", v.diverged_tuned()},
+          {"default_not_completed", v.default_not_completed()},
+          {"tuned_not_completed", v.tuned_not_completed()},
           {"bootstrap", {{"method", "percentile"}, {"confidence", 0.95}, {"resamples", v.resamples}, {"seed", v.bootstrap_seed}}},
           {"cost", to_json(v.cost)},
-          {"rms_error", to_json(v.rms_error)}};
+          {"rms_error_m", to_json(v.rms_error)}};
   if (v.cost_dev) j["cost_dev"] = to_json(*v.cost_dev);
   j["runs"] = runs;
   return j;
@@ -87,18 +87,23 @@ Objective parse_objective(const std::string& name) {
   throw Error("tuning: unknown objective '" + name + "' (known: sigma, entries, closed-loop)");
 }
 
-bool TuningReport::any_diverged() const {
+bool TuningReport::any_not_completed() const {
   return std::any_of(validations.begin(), validations.end(), [](const HeldOutValidation& v) {
-    return v.diverged_default() > 0 || v.diverged_tuned() > 0;
+    return v.default_not_completed() > 0 || v.tuned_not_completed() > 0;
   });
 }
 
 Json to_json(const TuningReport& r) {
   Json j;
+  j["format"] = kTuningFormat;
+  j["format_version"] = kTuningFormatVersion;
   j["scenario"] = r.scenario;
   j["seed"] = r.seed;
   j["objective"] = to_json(r.objective);
-  if (r.objective.objective != Objective::closed_loop) j["record"] = {{"samples", r.samples}, {"reused", r.record_reused}};
+  if (r.objective.objective != Objective::closed_loop) {
+    j["record_samples"] = r.samples;
+    j["record_reused"] = r.record_reused;
+  }
   j["controller"] = r.controller;
   j["parameters"] = {{"kind", r.parameters}, {"names", r.parameter_names}, {"lower", values(r.box.lower)},
                      {"upper", values(r.box.upper)}, {"start", values(r.box.start)}, {"tuned", values(r.fit.x)}};
@@ -110,14 +115,14 @@ Json to_json(const TuningReport& r) {
     j["k"] = values(r.fit.k);
     j["l"] = values(r.fit.l);
   }
-  j["residual_default"] = r.fit.start_residual;
-  j["residual_tuned"] = r.fit.residual;
-  j[r.figure + "_default"] = r.figure_default;
-  j[r.figure + "_tuned"] = r.figure_tuned;
+  j["default_objective"] = r.fit.start_residual;
+  j["tuned_objective"] = r.fit.residual;
+  j["default_" + r.figure] = r.figure_default;
+  j["tuned_" + r.figure] = r.figure_tuned;
   j["evaluations"] = r.fit.evaluations;
   j["stop_reason"] = r.fit.stop_reason;
-  j["setup_seconds"] = r.setup_seconds;
-  j["fit_seconds"] = r.fit.seconds;
+  j["setup_time_s"] = r.setup_seconds;
+  j["fit_time_s"] = r.fit.seconds;
   j["threads"] = r.threads;
   j["warnings"] = r.warnings;
   j["validation"] = Json::array();

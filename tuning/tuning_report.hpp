@@ -68,9 +68,24 @@ struct TuningReport {
   // σ_max curves; not in tuning.json.
   std::vector<std::filesystem::path> files;
 
-  bool any_diverged() const;
+  // Whether a held-out draw diverged or failed, for either controller (the exit code says so).
+  bool any_not_completed() const;
 };
 
+// tuning.json: {"format", "format_version", the report's fields, "validation", "provenance"}.
+// Its "format_version" says which names it uses:
+//   1 (no "format" or "format_version"): the names before docs/glossary.md. "residual_default",
+//     "residual_tuned", "<figure>_default", "<figure>_tuned", "diverged_default", "diverged_tuned",
+//     "difference_interval", the comparison "rms_error", the metric "rms-error", "record.samples",
+//     "record.reused", "setup_seconds", "fit_seconds", the roles "tuning scenario" and "held-out
+//     scenario", and a run's "status" as status_text ("diverged at 1.234 s").
+//   2: the glossary's names ("θ–D settings and tuning"): "default_objective", "tuned_objective",
+//     "default_<figure>", "tuned_<figure>", "default_not_completed", "tuned_not_completed",
+//     "difference_ci95", "rms_error_m", "record_samples", "record_reused", "setup_time_s",
+//     "fit_time_s", the roles "tuning_scenario" and "held_out_scenario", and a run's bare "status"
+//     (completed, diverged, failed) with its "end_time_s".
+inline constexpr const char* kTuningFormat = "thetad-tuning-1";
+inline constexpr int kTuningFormatVersion = 2;
 nlohmann::ordered_json to_json(const TuningReport& report);
 
 // The settings file of the tuned controller: `CONTROLLER:` with every field as the tuned controller

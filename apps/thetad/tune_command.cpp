@@ -18,7 +18,7 @@ std::string numbers(const Eigen::VectorXd& v) {
 
 void print_comparison(const std::string& scenario, const tuning::PairedComparison& c) {
   std::printf("validation scenario=%s metric=%s default_median=%.8g tuned_median=%.8g difference_median=%.6g "
-              "difference_95=[%.6g,%.6g]\n",
+              "difference_ci95=[%.6g,%.6g]\n",
               scenario.c_str(), tuning::metric_name(c.metric), c.default_median, c.tuned_median, c.difference.median,
               c.difference.low, c.difference.high);
 }
@@ -31,11 +31,11 @@ void print_report(const tuning::TuningReport& r) {
               r.options.algorithm.c_str());
   switch (r.objective.objective) {
     case tuning::Objective::sigma:
-      std::printf(" samples=%lld weighting=%s\n", static_cast<long long>(r.samples),
+      std::printf(" record_samples=%lld weighting=%s\n", static_cast<long long>(r.samples),
                   r.objective.weighting == tuning::Weighting::relative ? "relative" : "absolute");
       break;
     case tuning::Objective::entries:
-      std::printf(" samples=%lld entry_floor=%g\n", static_cast<long long>(r.samples), r.objective.entry_floor);
+      std::printf(" record_samples=%lld entry_floor=%g\n", static_cast<long long>(r.samples), r.objective.entry_floor);
       break;
     case tuning::Objective::closed_loop:
       std::printf(" metric=%s training_draws=%zu\n", tuning::metric_name(r.objective.metric), r.objective.training_seeds.size());
@@ -47,14 +47,15 @@ void print_report(const tuning::TuningReport& r) {
     for (std::size_t i = 0; i < r.parameter_names.size(); ++i)
       std::printf("%s=%.10g\n", r.parameter_names[i].c_str(), fit.x[static_cast<Eigen::Index>(i)]);
   }
-  std::printf("residual_default=%.10g residual_tuned=%.10g %s_default=%.6g %s_tuned=%.6g\n", fit.start_residual,
+  std::printf("default_objective=%.10g tuned_objective=%.10g default_%s=%.6g tuned_%s=%.6g\n", fit.start_residual,
               fit.residual, r.figure.c_str(), r.figure_default, r.figure.c_str(), r.figure_tuned);
-  std::printf("evaluations=%d setup_seconds=%.3f fit_seconds=%.3f stop=\"%s\"\n", fit.evaluations, r.setup_seconds,
+  std::printf("evaluations=%d setup_time_s=%.3f fit_time_s=%.3f stop_reason=\"%s\"\n", fit.evaluations, r.setup_seconds,
               fit.seconds, fit.stop_reason.c_str());
   for (const tuning::HeldOutValidation& v : r.validations) {
-    std::printf("validation scenario=%s role=%s draws=%zu first_seed=%llu pairs=%d diverged_default=%d diverged_tuned=%d\n",
-                v.scenario.c_str(), v.scenario == r.scenario ? "tuning-scenario" : "held-out-scenario", v.seeds.size(),
-                static_cast<unsigned long long>(v.seeds.front()), v.pairs(), v.diverged_default(), v.diverged_tuned());
+    std::printf("validation scenario=%s role=%s draws=%zu first_seed=%llu pairs=%d default_not_completed=%d "
+                "tuned_not_completed=%d\n",
+                v.scenario.c_str(), v.scenario == r.scenario ? "tuning_scenario" : "held_out_scenario", v.seeds.size(),
+                static_cast<unsigned long long>(v.seeds.front()), v.pairs(), v.default_not_completed(), v.tuned_not_completed());
     print_comparison(v.scenario, v.cost);
     if (v.cost_dev) print_comparison(v.scenario, *v.cost_dev);
     print_comparison(v.scenario, v.rms_error);
@@ -111,8 +112,9 @@ CLI::App* add_tune_command(CLI::App& app, TuneArguments& a) {
                    "entries: an entry P_rc is scaled by max(|P_rc|, floor * sqrt(P_rr P_cc))")
       ->capture_default_str();
   tune->add_option("--metric", a.tune.metric,
-                   "closed-loop, and the figure of merit: cost (J), rms-error (m) or cost-dev (J_dev, docs/model.md §7.2)")
-      ->check(CLI::IsMember({"cost", "rms-error", "cost-dev"}))
+                   "closed-loop, and the figure of merit: cost (J), rms_error_m (the RMS 3-D position error; "
+                   "rms-error, its former name, is accepted) or cost-dev (J_dev, docs/model.md §7.2)")
+      ->check(CLI::IsMember({"cost", "rms_error_m", "rms-error", "cost-dev"}))
       ->capture_default_str();
   tune->add_option("--draws", a.tune.draws, "closed-loop: training draws, seeds S ... S+draws-1 (S: --seed or the scenario's)")
       ->check(CLI::Range(1, 100000))
@@ -142,7 +144,7 @@ int run_tune(const TuneArguments& a) {
   Progress progress(Progress::mode_for_stderr(a.flight.quiet));
   const tuning::TuningReport report = tuning::tune(options, &progress);
   print_report(report);
-  return report.any_diverged() ? kExitDiverged : kExitCompleted;
+  return report.any_not_completed() ? kExitDiverged : kExitCompleted;
 }
 
 }  // namespace thetad::app

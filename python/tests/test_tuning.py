@@ -20,7 +20,7 @@ def test_a_closed_loop_tune_of_the_series_writes_a_settings_file_that_flies(tmp_
     assert report["parameters"]["kind"] == "series"
     assert report["parameters"]["names"] == ["k1", "k2", "l1", "l2"]
     assert report["evaluations"] == 2 and report["stop_reason"] == "maxeval reached"
-    assert report["mean_cost_tuned"] <= report["mean_cost_default"]
+    assert report["tuned_mean_cost"] <= report["default_mean_cost"]
     assert [v["scenario"] for v in report["validation"]] == ["scenario-1", "scenario-2"]
     assert all(v["pairs"] == 1 and v["runs"][0]["seed"] == 2 for v in report["validation"])
     settings = tmp_path / "theta-d-tuned.yaml"
@@ -50,6 +50,14 @@ def test_the_sdre_weights_are_tuned_by_the_closed_loop(tmp_path):
     assert report["tuned_settings"].endswith(os.path.join("sdre", "sdre-tuned.yaml"))
     tuned = thetad.run("scenario-1", f"tuned=sdre:{report['tuned_settings']}", duration=1.0, summary_only=True)
     assert tuned.completed and tuned.label == "tuned"
+
+
+def test_the_rms_error_metric_is_still_accepted_by_its_former_name(tmp_path):
+    report = thetad.tune("scenario-1", objective="closed-loop", metric="rms-error", draws=1, max_evaluations=1,
+                         duration=0.5, timing=False, validation=False, out=tmp_path)
+    assert report["format_version"] == 2
+    assert report["objective"]["metric"] == "rms_error_m"
+    assert report["tuned_mean_rms_error_m"] == report["default_mean_rms_error_m"] > 0
 
 
 def test_bad_options_fail_before_anything_is_written(tmp_path):

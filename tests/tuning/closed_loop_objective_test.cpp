@@ -42,6 +42,8 @@ TEST(ClosedLoop, MetricsAndTheirNames) {
   EXPECT_EQ(mean_metric({s, s}, Metric::cost), 12.5);
   EXPECT_EQ(mean_metric({s, diverged}, Metric::cost), std::numeric_limits<double>::infinity());
   EXPECT_EQ(parse_metric(metric_name(Metric::rms_error)), Metric::rms_error);
+  EXPECT_STREQ(metric_name(Metric::rms_error), "rms_error_m");
+  EXPECT_EQ(parse_metric("rms-error"), Metric::rms_error);  // its name before docs/glossary.md
   EXPECT_EQ(parse_metric("cost"), Metric::cost);
   EXPECT_THROW(metric_value(s, Metric::cost_dev), Error);  // a run without J_dev
   s.cost_dev = 3.25;
@@ -52,7 +54,7 @@ TEST(ClosedLoop, MetricsAndTheirNames) {
         try {
           parse_metric("speed");
         } catch (const Error& error) {
-          EXPECT_THAT(error.what(), HasSubstr("unknown metric 'speed' (known: cost, rms-error, cost-dev)"));
+          EXPECT_THAT(error.what(), HasSubstr("unknown metric 'speed' (known: cost, rms_error_m, cost-dev)"));
           throw;
         }
       },

@@ -47,7 +47,7 @@ TEST(HeldOutValidation, FliesTheHeldOutSeedsAndComparesPairs) {
   const HeldOutValidation same = validate_held_out(flights, ones, seeds, 1, 500);
   EXPECT_EQ(same.scenario, "scenario-1");
   EXPECT_EQ(same.pairs(), 3);
-  EXPECT_EQ(same.diverged_default() + same.diverged_tuned(), 0);
+  EXPECT_EQ(same.default_not_completed() + same.tuned_not_completed(), 0);
   for (std::size_t i = 0; i < seeds.size(); ++i) {
     EXPECT_EQ(same.default_runs[i].settings.seed, seeds[i]);
     EXPECT_EQ(same.tuned_runs[i].settings.seed, seeds[i]);

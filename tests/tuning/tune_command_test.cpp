@@ -85,10 +85,10 @@ TEST_F(TuneCommand, WritesASettingsFileThatRunAcceptsAndReusesItsRecord) {
   const Output first = thetad(tune("--record " + path("record.csv") + " --holdout-draws 3"));
   ASSERT_EQ(first.status, 0) << first.err;
   EXPECT_THAT(first.out, HasSubstr("scenario=climb controller=theta-d parameters=series objective=sigma terms=3 algorithm=LN_BOBYQA "
-                                    "samples=200 weighting=absolute"));
-  EXPECT_THAT(first.out, HasSubstr("validation scenario=climb role=tuning-scenario draws=3 first_seed=8 pairs=3"));
+                                    "record_samples=200 weighting=absolute"));
+  EXPECT_THAT(first.out, HasSubstr("validation scenario=climb role=tuning_scenario draws=3 first_seed=8 pairs=3"));
   EXPECT_THAT(first.out, HasSubstr("validation scenario=climb metric=cost default_median="));
-  EXPECT_THAT(first.out, HasSubstr("validation scenario=climb metric=rms-error default_median="));
+  EXPECT_THAT(first.out, HasSubstr("validation scenario=climb metric=rms_error_m default_median="));
   for (const char* file : {"theta-d-tuned.yaml", "sigma-curves.csv", "tuning.json"}) EXPECT_TRUE(fs::exists(dir_ / "out" / file)) << file;
   EXPECT_TRUE(fs::exists(dir_ / "record.csv"));
 
@@ -112,8 +112,19 @@ TEST_F(TuneCommand, WritesASettingsFileThatRunAcceptsAndReusesItsRecord) {
   EXPECT_EQ(tuning["objective"]["name"], "sigma");
   EXPECT_EQ(tuning["objective"]["weighting"], "absolute");
   EXPECT_EQ(tuning["seed"], 7);
-  EXPECT_EQ(validation["role"], "tuning scenario");
+  EXPECT_EQ(validation["role"], "tuning_scenario");
   EXPECT_EQ(validation["bootstrap"]["seed"], 7);
+  // The names of docs/glossary.md, format_version 2 (tuning/tuning_report.hpp).
+  EXPECT_EQ(tuning["format"], "thetad-tuning-1");
+  EXPECT_EQ(tuning["format_version"], 2);
+  EXPECT_EQ(tuning["record_samples"], 200);
+  EXPECT_EQ(tuning["record_reused"], false);
+  EXPECT_EQ(validation["default_not_completed"], 0);
+  EXPECT_EQ(validation["tuned_not_completed"], 0);
+  EXPECT_EQ(validation["rms_error_m"]["metric"], "rms_error_m");
+  EXPECT_EQ(validation["rms_error_m"]["difference_ci95"].size(), 2u);
+  EXPECT_EQ(validation["runs"][0]["tuned"]["status"], "completed");
+  EXPECT_EQ(validation["runs"][0]["tuned"]["end_time_s"], 2.0);
 
   // Reusing the record skips the flight and gives the same fit, bit for bit.
   const Output second = thetad(tune("--record " + path("record.csv") + " --no-validation"));
@@ -132,26 +143,27 @@ TEST_F(TuneCommand, WritesASettingsFileThatRunAcceptsAndReusesItsRecord) {
 TEST_F(TuneCommand, EntriesAndClosedLoopObjectivesAreReportedWithTheirSettings) {
   const Output entries = thetad(tune("--objective entries --entry-floor 0.01 --holdout-draws 2 --max-evaluations 30"));
   ASSERT_EQ(entries.status, 0) << entries.err;
-  EXPECT_THAT(entries.out, HasSubstr("objective=entries terms=3 algorithm=LN_BOBYQA samples=200 entry_floor=0.01"));
-  EXPECT_THAT(entries.out, HasSubstr("rms_relative_entry_error_default="));
+  EXPECT_THAT(entries.out, HasSubstr("objective=entries terms=3 algorithm=LN_BOBYQA record_samples=200 entry_floor=0.01"));
+  EXPECT_THAT(entries.out, HasSubstr("default_rms_relative_entry_error="));
   auto report = nlohmann::json::parse(thetad::testing::read_text(dir_ / "out" / "tuning.json"));
   EXPECT_EQ(report["objective"], (nlohmann::json{{"name", "entries"}, {"entry_floor", 0.01}, {"every", 10}}));
   EXPECT_LE(report["evaluations"].get<int>(), 30);
-  EXPECT_LE(report["residual_tuned"].get<double>(), report["residual_default"].get<double>());
+  EXPECT_LE(report["tuned_objective"].get<double>(), report["default_objective"].get<double>());
   EXPECT_FALSE(fs::exists(dir_ / "out" / "sigma-curves.csv"));
 
-  // Without --ideal the draws differ; one second keeps it short.
+  // Without --ideal the draws differ; one second keeps it short. The metric by its former name,
+  // which the command still accepts.
   const std::string closed_loop = "tune --scenario " + path("climb.yaml") + " --duration 1 --out " + path("loop") +
                                   " --objective closed-loop --metric rms-error --draws 2 --holdout-draws 3 "
                                   "--max-evaluations 5";
   const Output loop = thetad(closed_loop);
   ASSERT_EQ(loop.status, 0) << loop.err;
   EXPECT_THAT(loop.out, HasSubstr("controller=theta-d parameters=series objective=closed-loop terms=3 algorithm=LN_COBYLA "
-                                  "metric=rms-error training_draws=2"));
-  EXPECT_THAT(loop.out, HasSubstr("mean_rms_error_m_default="));
+                                  "metric=rms_error_m training_draws=2"));
+  EXPECT_THAT(loop.out, HasSubstr("default_mean_rms_error_m="));
   report = nlohmann::json::parse(thetad::testing::read_text(dir_ / "loop" / "tuning.json"));
   EXPECT_EQ(report["objective"]["name"], "closed-loop");
-  EXPECT_EQ(report["objective"]["metric"], "rms-error");
+  EXPECT_EQ(report["objective"]["metric"], "rms_error_m");
   EXPECT_EQ(report["objective"]["training_seeds"], (nlohmann::json{7, 8}));
   EXPECT_LE(report["evaluations"].get<int>(), 5);
   EXPECT_EQ(report["budget"]["evaluations"], 5);
@@ -172,7 +184,7 @@ TEST_F(TuneCommand, EntriesAndClosedLoopObjectivesAreReportedWithTheirSettings) 
   EXPECT_EQ(report["parameters"]["kind"], "weights");
   EXPECT_EQ(report["parameters"]["names"].size(), 9u);
   EXPECT_EQ(report["parameters"]["upper"][0], 1.0);
-  EXPECT_LE(report["residual_tuned"].get<double>(), report["residual_default"].get<double>());
+  EXPECT_LE(report["tuned_objective"].get<double>(), report["default_objective"].get<double>());
   EXPECT_TRUE(report["validation"][0].contains("cost_dev"));
   const Output run = thetad("run --scenario " + path("climb.yaml") + " --duration 0.2 --controller sdre --settings " +
                             path("weights/sdre-tuned.yaml") + " --out " + path("weights-run"));
