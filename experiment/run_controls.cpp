@@ -73,6 +73,10 @@ void apply(const RunControls& controls, sim::SimulationSettings& settings) {
   };
   scale("uncertainty_scale", controls.uncertainty_scale, settings.uncertainty_scale);
   heli::check_uncertainty_scale(settings.uncertainty_scale);
+  if (controls.parameter_deviations) {
+    heli::parameter_draw(*controls.parameter_deviations);
+    settings.parameter_deviations = *controls.parameter_deviations;
+  }
   scale("noise_scale", controls.noise_scale, settings.noise.scale);
   scale("gust_scale", controls.gust_scale, settings.wind_gust.amplitude_scale);
   if (controls.gust_onset) {

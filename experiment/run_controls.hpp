@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -28,6 +29,8 @@ struct RunControls {
   std::optional<double> noise_scale;        // every sensor, actuator, wind and induced-velocity noise level
   std::optional<double> gust_scale;         // the whole wind: mean and gust deviations
   std::optional<double> gust_onset;         // s: calm air before it
+  // Table 1's 21 parameter deviations xi in [-1, 1] instead of the draw (a worst case, docs/robustness.md).
+  std::optional<std::vector<double>> parameter_deviations;
   // The disturbances beyond the paper (docs/model.md §15), whole blocks in place of the scenario's
   // (a replay sets them as recorded) ...
   DisturbanceBlocks beyond_paper;

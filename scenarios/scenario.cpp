@@ -12,6 +12,7 @@
 #include "core/error.hpp"
 #include "core/text_file.hpp"
 #include "core/helicopter/state.hpp"
+#include "core/helicopter/uncertainty.hpp"
 
 namespace thetad {
 
@@ -196,6 +197,23 @@ void check_flight_length(const Settings& top, const Settings& simulation, const 
                        seconds(settings.duration));
 }
 
+// simulation.disturbances.parameter_deviations: {NAME: xi, ...} over Table 1's parameter names.
+std::vector<double> read_parameter_deviations(const Settings& disturbances) {
+  if (!disturbances.has("parameter_deviations")) return {};
+  const Settings deviations = disturbances.block("parameter_deviations");
+  const auto names = heli::parameter_uncertainty_names();
+  std::string allowed;
+  for (const auto name : names) allowed += (allowed.empty() ? "" : ", ") + std::string(name);
+  for (const auto& item : deviations.node()) {
+    const std::string key = item.first.as<std::string>();
+    if (std::find(names.begin(), names.end(), key) == names.end())
+      throw deviations.error(key, "not a parameter of Table 1 (docs/model.md §9.1; allowed: " + allowed + ")");
+  }
+  std::vector<double> xi(names.size(), 0.0);
+  for (std::size_t i = 0; i < names.size(); ++i) xi[i] = deviations.number(std::string(names[i]), 0.0, -1.0, 1.0);
+  return xi;
+}
+
 void read_simulation(const YAML::Node& root, Scenario& scenario) {
   const YAML::Node node = child(root, "simulation");
   const Settings simulation(node, "simulation");
@@ -230,7 +248,7 @@ void read_simulation(const YAML::Node& root, Scenario& scenario) {
 
   const Settings disturbances(child(node, "disturbances"), "simulation.disturbances");
   disturbances.allow_only({"parameter_uncertainty", "wind_gust", "measurement_noise", "measurement_noise_on",
-                           "actuator_noise", "wind_noise", "induced_velocity_noise"});
+                           "actuator_noise", "wind_noise", "induced_velocity_noise", "parameter_deviations"});
   scenario.parameter_uncertainty = optional_boolean(disturbances, "parameter_uncertainty");
   scenario.wind_gust = optional_boolean(disturbances, "wind_gust");
   scenario.measurement_noise = optional_boolean(disturbances, "measurement_noise");
@@ -243,6 +261,7 @@ void read_simulation(const YAML::Node& root, Scenario& scenario) {
   scenario.actuator_noise = optional_boolean(disturbances, "actuator_noise");
   scenario.wind_noise = optional_boolean(disturbances, "wind_noise");
   scenario.induced_velocity_noise = optional_boolean(disturbances, "induced_velocity_noise");
+  scenario.parameter_deviations = read_parameter_deviations(disturbances);
 
   scenario.beyond_paper =
       read_disturbance_blocks(child(node, "wind"), child(node, "sensor_noise"), child(node, "servos"));
@@ -305,6 +324,7 @@ sim::SimulationSettings Scenario::simulation_settings(sim::SimulationSettings ba
   if (actuator_noise) base.noise.actuator = *actuator_noise;
   if (wind_noise) base.noise.wind_component = *wind_noise;
   if (induced_velocity_noise) base.noise.induced_velocity = *induced_velocity_noise;
+  if (!parameter_deviations.empty()) base.parameter_deviations = parameter_deviations;
   beyond_paper.apply(base);
   return base;
 }

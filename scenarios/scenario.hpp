@@ -49,6 +49,9 @@ struct Scenario {
   std::optional<bool> actuator_noise;
   std::optional<bool> wind_noise;              // Table 1 #26-28
   std::optional<bool> induced_velocity_noise;  // Table 1 #29-30
+  // simulation.disturbances.parameter_deviations: Table 1's parameter deviations xi by name (absent
+  // names 0) instead of the draw; empty: drawn.
+  std::vector<double> parameter_deviations;
   // `wind:`, `sensor_noise:`, `servos:` (docs/model.md §15): absent blocks keep the base's (off).
   DisturbanceBlocks beyond_paper;
 

@@ -14,22 +14,22 @@ const char* metric_name(Metric metric) {
   switch (metric) {
     case Metric::cost: return "cost";
     case Metric::rms_error: return "rms_error_m";
-    default: return "cost-dev";
+    default: return "cost_dev";
   }
 }
 
 Metric parse_metric(const std::string& name) {
   if (name == "cost") return Metric::cost;
-  // "rms-error": the name before docs/glossary.md ("θ–D settings and tuning"), still accepted so that
-  // earlier command lines and Python calls keep working.
+  // "rms-error", "cost-dev": the names before docs/glossary.md ("θ–D settings and tuning"), still
+  // accepted so that earlier command lines and Python calls keep working.
   if (name == "rms_error_m" || name == "rms-error") return Metric::rms_error;
-  if (name == "cost-dev") return Metric::cost_dev;
-  throw Error("tuning: unknown metric '" + name + "' (known: cost, rms_error_m, cost-dev)");
+  if (name == "cost_dev" || name == "cost-dev") return Metric::cost_dev;
+  throw Error("tuning: unknown metric '" + name + "' (known: cost, rms_error_m, cost_dev)");
 }
 
 double metric_value(const sim::RunSummary& summary, Metric metric) {
   if (metric == Metric::cost_dev && !summary.cost_dev)
-    throw Error("tuning: the metric cost-dev needs J_dev, which this plant's runs do not have (no trims)");
+    throw Error("tuning: the metric cost_dev needs J_dev, which this plant's runs do not have (no trims)");
   if (summary.status != sim::RunStatus::completed) return std::numeric_limits<double>::infinity();
   switch (metric) {
     case Metric::cost: return summary.cost;

@@ -30,7 +30,7 @@ enum class Metric {
   rms_error,  // the RMS 3-D position error: the norm of the per-axis RMS tracking errors (m)
   cost_dev,   // J_dev, the comparison's score (sim::RunSummary::cost_dev, docs/model.md §7.2)
 };
-const char* metric_name(Metric metric);  // "cost", "rms_error_m", "cost-dev"
+const char* metric_name(Metric metric);  // "cost", "rms_error_m", "cost_dev"
 // Also takes "rms-error", rms_error_m's name before docs/glossary.md. Throws thetad::Error naming
 // the known metrics.
 Metric parse_metric(const std::string& name);

@@ -37,7 +37,7 @@ struct TuneOptions {
   bool relative = false;         // sigma: fit (σ_θ–D − σ_SDRE) / σ_SDRE
   double entry_floor = 1e-3;     // entries: see entry_fit.hpp
   // closed-loop
-  std::string metric = "cost";   // cost | rms_error_m | cost-dev (parse_metric)
+  std::string metric = "cost";   // cost | rms_error_m | cost_dev (parse_metric)
   int draws = 5;                 // training draws: seeds S … S+draws−1 (S: the flight's seed)
   // validation
   bool validation = true;

@@ -1,8 +1,6 @@
 #include "apps/thetad/disturbances_command.hpp"
 
-#include <algorithm>
 #include <cstdio>
-#include <thread>
 
 #include "core/atomic_file.hpp"
 #include "experiment/disturbance_effects.hpp"
@@ -16,12 +14,8 @@ CLI::App* add_disturbances_command(CLI::App& app, DisturbancesArguments& argumen
                       "and all but one, every controller on the same seed; print the RMS error and the costs of "
                       "each flight, write <out>/disturbances.json (docs/robustness.md)");
   add_flight_options(*command, arguments.flight, true, false);
-  command->add_option("--controllers", arguments.controllers,
-                      "Comma-separated NAME, LABEL=NAME or LABEL=NAME:SETTINGS.yaml, or all (every registered "
-                      "controller but the examples)")
-      ->delimiter(',')
-      ->required();
-  command->add_option("--jobs", arguments.jobs, "Flights at once (default: every core)")->check(CLI::Range(0, 1024));
+  add_controllers_option(*command, arguments.controllers);
+  add_jobs_option(*command, arguments.jobs);
   command->get_option("--out")->required();
   return command;
 }
@@ -30,9 +24,9 @@ int run_disturbances(const DisturbancesArguments& arguments) {
   const FlightOptions& options = arguments.flight;
   const std::vector<ControllerSpec> specs = parse_controller_specs(arguments.controllers, options.settings);
   prepare_output_folder(options.out);
-  const int jobs = arguments.jobs > 0 ? arguments.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   Progress progress(Progress::mode_for_stderr(options.quiet));
-  const DisturbanceEffects effects = fly_disturbance_effects(options.scenario, run_controls(options), specs, jobs, &progress);
+  const DisturbanceEffects effects =
+      fly_disturbance_effects(options.scenario, run_controls(options), specs, jobs_or_every_core(arguments.jobs), &progress);
   std::fputs(disturbance_table(effects).c_str(), stdout);
   const auto file = options.out / "disturbances.json";
   write_file_atomically(file, disturbance_json(effects).dump(2) + "\n");

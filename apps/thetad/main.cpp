@@ -20,6 +20,7 @@
 #include "apps/thetad/option_suggestion.hpp"
 #include "apps/thetad/run_command.hpp"
 #include "apps/thetad/tune_command.hpp"
+#include "apps/thetad/worst_case_command.hpp"
 #include "core/text_file.hpp"
 #include "experiment/build_info.hpp"
 #include "experiment/plugins.hpp"
@@ -74,6 +75,8 @@ int main(int argc, char** argv) {
   auto* export_command = thetad::app::add_export_command(app, export_arguments);
   thetad::app::DisturbancesArguments disturbances_arguments;
   auto* disturbances = thetad::app::add_disturbances_command(app, disturbances_arguments);
+  thetad::app::WorstCaseArguments worst_case_arguments;
+  auto* worst_case = thetad::app::add_worst_case_command(app, worst_case_arguments);
 
   try {
     app.parse(argc, argv);
@@ -98,6 +101,7 @@ int main(int argc, char** argv) {
     if (*optimal) return thetad::app::run_optimal(optimal_arguments);
     if (*export_command) return thetad::app::run_export(export_arguments);
     if (*disturbances) return thetad::app::run_disturbances(disturbances_arguments);
+    if (*worst_case) return thetad::app::run_worst_case(worst_case_arguments);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "thetad: error: %s\n", thetad::escaped_utf8(e.what()).c_str());
     return 1;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <thread>
 #include <optional>
 #include <string>
 
@@ -159,6 +160,23 @@ void add_flight_options(CLI::App& command, FlightOptions& options, bool scenario
   }
   command.add_flag("--quiet", options.quiet, "No progress display");
   command.add_option("--out", options.out, "Output directory (created; checked before anything flies)");
+}
+
+CLI::Option* add_controllers_option(CLI::App& command, std::vector<std::string>& controllers) {
+  return command
+      .add_option("--controllers", controllers,
+                  "Comma-separated NAME, LABEL=NAME or LABEL=NAME:SETTINGS.yaml, or all (every registered controller "
+                  "but the examples)")
+      ->delimiter(',')
+      ->required();
+}
+
+CLI::Option* add_jobs_option(CLI::App& command, int& jobs, const std::string& what) {
+  return command.add_option("--jobs", jobs, what + " (default: every core)")->check(CLI::Range(0, 1024));
+}
+
+int jobs_or_every_core(int jobs) {
+  return jobs > 0 ? jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 }
 
 RunControls run_controls(const FlightOptions& options) {

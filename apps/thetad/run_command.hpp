@@ -40,6 +40,13 @@ void add_flight_options(CLI::App& command, FlightOptions& options, bool scenario
 // The run controls the options ask for.
 RunControls run_controls(const FlightOptions& options);
 
+// --controllers (required): specs parsed by parse_controller_specs, `all` included.
+CLI::Option* add_controllers_option(CLI::App& command, std::vector<std::string>& controllers);
+// --jobs: flights at once; 0 (the default) is every core.
+CLI::Option* add_jobs_option(CLI::App& command, int& jobs, const std::string& what = "Flights at once");
+// `jobs`, or every core for 0.
+int jobs_or_every_core(int jobs);
+
 struct RunArguments {
   FlightOptions flight;
   std::string controller;

@@ -113,8 +113,8 @@ CLI::App* add_tune_command(CLI::App& app, TuneArguments& a) {
       ->capture_default_str();
   tune->add_option("--metric", a.tune.metric,
                    "closed-loop, and the figure of merit: cost (J), rms_error_m (the RMS 3-D position error; "
-                   "rms-error, its former name, is accepted) or cost-dev (J_dev, docs/model.md §7.2)")
-      ->check(CLI::IsMember({"cost", "rms_error_m", "rms-error", "cost-dev"}))
+                   "rms-error, its former name, is accepted) or cost_dev (J_dev, docs/model.md §7.2; cost-dev accepted)")
+      ->check(CLI::IsMember({"cost", "rms_error_m", "rms-error", "cost_dev", "cost-dev"}))
       ->capture_default_str();
   tune->add_option("--draws", a.tune.draws, "closed-loop: training draws, seeds S ... S+draws-1 (S: --seed or the scenario's)")
       ->check(CLI::Range(1, 100000))

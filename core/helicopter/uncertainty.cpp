@@ -53,6 +53,25 @@ std::array<double, kInputDim> actuator_noise_percents() { return noise_percents<
 std::array<double, 3> wind_noise_percents() { return noise_percents<3>(UncertaintyCategory::wind_noise); }
 std::array<double, 2> induced_velocity_noise_percents() { return noise_percents<2>(UncertaintyCategory::model_noise); }
 
+ParameterDraw parameter_draw(const std::vector<double>& xi) {
+  ParameterDraw draw{};
+  if (xi.size() != draw.size())
+    throw Error("parameter deviations: " + std::to_string(xi.size()) + " given, Table 1 has " +
+                std::to_string(draw.size()) + " parameter entries");
+  std::copy(xi.begin(), xi.end(), draw.begin());
+  // perturbed_parameters names an entry outside [-1, 1]; checked here too, before anything flies.
+  perturbed_parameters(Parameters{}, draw);
+  return draw;
+}
+
+std::array<std::string_view, kParameterUncertaintyCount> parameter_uncertainty_names() {
+  std::array<std::string_view, kParameterUncertaintyCount> names{};
+  std::size_t next = 0;
+  for (const auto& entry : kUncertaintyTable)
+    if (entry.parameter != nullptr) names[next++] = entry.name;
+  return names;
+}
+
 PerturbedParameters perturbed_parameters(const Parameters& nominal, const ParameterDraw& xi, double scale) {
   check_uncertainty_scale(scale);
   PerturbedParameters out{nominal, {}};

@@ -113,6 +113,12 @@ void check_uncertainty_scale(double scale);
 // xi for the 21 parameter entries, in table order.
 using ParameterDraw = std::array<double, kParameterUncertaintyCount>;
 
+// `xi` as a draw; throws thetad::Error unless it has the 21 entries, each finite and in [-1, 1].
+ParameterDraw parameter_draw(const std::vector<double>& xi);
+
+// The names of the 21 parameter entries (Table 1's), in table order.
+std::array<std::string_view, kParameterUncertaintyCount> parameter_uncertainty_names();
+
 // Draws xi ~ U[-1, 1] for the 21 parameter entries in table order from rng (portable: built from
 // the generator's raw 64-bit output, so a seed gives the same draw on every standard library).
 // `scale` multiplies every bound (0: the nominal plant, 1: Table 1, 2: twice its percents); the

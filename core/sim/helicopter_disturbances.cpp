@@ -49,7 +49,10 @@ HelicopterDisturbances::HelicopterDisturbances(const SimulationSettings& setting
 
 const SdcPlant& HelicopterDisturbances::start(std::mt19937_64& rng) {
   // Drawn whether or not the uncertainty is on, so that every later draw is the same either way.
-  const heli::PerturbedParameters drawn = heli::perturbed_parameters(nominal_, rng, settings_.uncertainty_scale);
+  heli::PerturbedParameters drawn = heli::perturbed_parameters(nominal_, rng, settings_.uncertainty_scale);
+  if (!settings_.parameter_deviations.empty())
+    drawn = heli::perturbed_parameters(nominal_, heli::parameter_draw(settings_.parameter_deviations),
+                                       settings_.uncertainty_scale);
   plant_.emplace(settings_.parameter_uncertainty ? drawn.parameters : nominal_, options_);
   parameter_factors_.clear();
   if (settings_.parameter_uncertainty) {

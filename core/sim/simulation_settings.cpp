@@ -21,6 +21,7 @@ void SimulationSettings::validate() const {
     throw Error("simulate: duration must be at least one controller period and at most " +
                 std::to_string(static_cast<int>(kMaxDuration)) + " s (one simulated day)");
   heli::check_uncertainty_scale(uncertainty_scale);
+  if (!parameter_deviations.empty()) heli::parameter_draw(parameter_deviations);
   if (!(noise.scale >= 0.0) || !std::isfinite(noise.scale))
     throw Error("simulate: the noise scale must be finite and non-negative");
   if (duration / controller_period() > 1e10)

@@ -33,6 +33,10 @@ struct SimulationSettings {
   bool parameter_uncertainty = true;  // Table 1 parameters drawn once per run
   // Multiplies Table 1's parameter bounds (heli::perturbed_parameters): 0 nominal, 1 the paper's, 2 twice.
   double uncertainty_scale = 1.0;
+  // Table 1's 21 parameter deviations xi in [-1, 1], in table order, flown instead of the run's draw
+  // (a worst case found by a search, and its replays); empty: drawn. The draw is taken either way,
+  // so every later random number is the same.
+  std::vector<double> parameter_deviations;
   WindGustSettings wind_gust;
   NoiseSettings noise;
   // The disturbances beyond the paper's (docs/model.md §15), each off by default and drawing from

@@ -5,6 +5,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "core/helicopter/uncertainty.hpp"
 #include "scenarios/scenario.hpp"
 #include "tests/error_message.hpp"
 
@@ -84,6 +85,23 @@ TEST(DisturbanceBlocks, BadValuesNameTheFileTheFieldAndTheReason) {
   EXPECT_THAT(error_of("  servos: {time_constant: [0.1, 0.1]}\n"),
               HasSubstr("field 'simulation.servos.time_constant': expected 5 entries, got 2"));
   EXPECT_THAT(error_of("  servos: {delay_samples: 1.5}\n"), HasSubstr("field 'simulation.servos.delay_samples'"));
+}
+
+// Table 1's parameter deviations by name (a worst case to fly again): the others 0, each in [-1, 1].
+TEST(DisturbanceBlocks, ParameterDeviationsByNameReplaceTheDraw) {
+  EXPECT_TRUE(settings_of("  seed: 4\n").parameter_deviations.empty());
+  const sim::SimulationSettings settings =
+      settings_of("  disturbances:\n    parameter_deviations: {m: -1, I_xx: 0.25}\n");
+  ASSERT_EQ(settings.parameter_deviations.size(), 21u);
+  const auto names = heli::parameter_uncertainty_names();
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const double expected = names[i] == "m" ? -1.0 : names[i] == "I_xx" ? 0.25 : 0.0;
+    EXPECT_EQ(settings.parameter_deviations[i], expected) << names[i];
+  }
+  EXPECT_THAT(error_of("  disturbances:\n    parameter_deviations: {mass: 0.5}\n"),
+              HasSubstr("field 'simulation.disturbances.parameter_deviations.mass': not a parameter of Table 1"));
+  EXPECT_THAT(error_of("  disturbances:\n    parameter_deviations: {m: 1.5}\n"),
+              HasSubstr("simulation.disturbances.parameter_deviations.m"));
 }
 
 }  // namespace

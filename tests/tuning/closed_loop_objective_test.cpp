@@ -54,7 +54,7 @@ TEST(ClosedLoop, MetricsAndTheirNames) {
         try {
           parse_metric("speed");
         } catch (const Error& error) {
-          EXPECT_THAT(error.what(), HasSubstr("unknown metric 'speed' (known: cost, rms_error_m, cost-dev)"));
+          EXPECT_THAT(error.what(), HasSubstr("unknown metric 'speed' (known: cost, rms_error_m, cost_dev)"));
           throw;
         }
       },

@@ -178,7 +178,7 @@ TEST_F(TuneCommand, EntriesAndClosedLoopObjectivesAreReportedWithTheirSettings) 
   ASSERT_EQ(weights.status, 0) << weights.err;
   EXPECT_THAT(weights.out, HasSubstr("controller=sdre parameters=weights objective=closed-loop"));
   EXPECT_THAT(weights.out, HasSubstr("log10 R[T_mr]="));
-  EXPECT_THAT(weights.out, HasSubstr("metric=cost-dev default_median="));
+  EXPECT_THAT(weights.out, HasSubstr("metric=cost_dev default_median="));
   report = nlohmann::json::parse(thetad::testing::read_text(dir_ / "weights" / "tuning.json"));
   EXPECT_EQ(report["controller"], "sdre");
   EXPECT_EQ(report["parameters"]["kind"], "weights");
