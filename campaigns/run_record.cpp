@@ -44,7 +44,7 @@ RunRecord make_record(const PlannedRun& run, const FactorValues& factors, const 
   const bool timed = s.settings.measure_compute_time;
   const double none = std::numeric_limits<double>::quiet_NaN();
   record.metrics.insert(record.metrics.end(), {timed ? s.compute_ns_mean / 1e3 : none, timed ? s.compute_ns_median / 1e3 : none,
-                                               timed ? s.compute_ns_p99 / 1e3 : none, timed ? result.wall_seconds : none});
+                                               timed ? s.compute_ns_p99 / 1e3 : none, timed ? result.wall_time_s : none});
   return record;
 }
 

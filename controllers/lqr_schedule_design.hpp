@@ -58,7 +58,10 @@ struct LqrSchedulePoint {
 };
 
 struct LqrScheduleTable {
-  static constexpr int kFormatVersion = 1;
+  // The table file's "format_version" (controllers/lqr_schedule_file.hpp, docs/lqr-scheduled.md):
+  //   1: the key was "version".
+  //   2: "format_version", as every thetad document says it (docs/glossary.md); the table is as in 1.
+  static constexpr int kFormatVersion = 2;
   // The gains act on V_track without the bias state s (constant, so no state of the design).
   static constexpr int kDesignStates = heli::kStateDim - 1;
 

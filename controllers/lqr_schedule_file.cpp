@@ -103,7 +103,7 @@ void save_lqr_schedule(const LqrScheduleTable& table, const std::filesystem::pat
   }
   const json document = {
       {"format", kFormatName},
-      {"version", LqrScheduleTable::kFormatVersion},
+      {"format_version", LqrScheduleTable::kFormatVersion},
       {"model", {{"options", table.model_options}, {"hash", hash_text(table.model_hash)}}},
       {"weights", {{"Q", to_json(table.state_weights)}, {"R", to_json(table.input_weights)}}},
       {"design_states", table.design_states},
@@ -202,11 +202,16 @@ LqrScheduleTable load_lqr_schedule(const std::filesystem::path& file) {
   if (read.text(read.member(document, "", "format"), "format") != kFormatName) {
     read.fail("format", std::string("expected \"") + kFormatName + "\"");
   }
-  const double version = read.number(read.member(document, "", "version"), "version");
-  if (version != LqrScheduleTable::kFormatVersion) {
-    read.fail("version", "this thetad reads version " + std::to_string(LqrScheduleTable::kFormatVersion) +
-                             ", the file has " + read.member(document, "", "version").dump());
-  }
+  // Tables of version 1 said "version"; their content is that of version 2.
+  const char* key = document.is_object() && !document.contains("format_version") ? "version" : "format_version";
+  const json& given = read.member(document, "", key);
+  const double version = read.number(given, key);
+  if (version > LqrScheduleTable::kFormatVersion)
+    read.fail(key, "written by a newer thetad (format_version " + given.dump() + "; this one reads up to " +
+                       std::to_string(LqrScheduleTable::kFormatVersion) + ")");
+  if (version != std::floor(version) || version < 1 || (std::string(key) == "version" && version != 1))
+    read.fail(key, "expected a format_version from 1 to " + std::to_string(LqrScheduleTable::kFormatVersion) +
+                       ", the file has " + given.dump());
 
   LqrScheduleTable table = read_header(read, document);
   const json& points = read.member(document, "", "points");

@@ -27,23 +27,28 @@ std::string comparison_table(const std::vector<RunResult>& runs) {
   for (const RunResult& run : runs) width = std::max(width, run.spec.label.size());
   const int w = static_cast<int>(width);
   const bool timing = !runs.empty() && runs.front().summary.settings.measure_compute_time;
-  // The columns are the plant's: one per tracked state (and the 3-D RMS error), the first input
-  // and the others together. The runs of one table flew one plant.
+  // The columns are the plant's: one per tracked state, the 3-D RMS error (rms_error_m), the first
+  // input and the others together. The runs of one table flew one plant.
   const sim::RunSummary none;
   const sim::RunSummary& shape = runs.empty() ? none : runs.front().summary;
   const auto axes = static_cast<int>(shape.tracked.size());
-  const std::string unit = shape.tracked.empty() ? "" : " (" + shape.tracked.front().command.unit + ")";
+  const std::string unit = shape.tracked.empty() || shape.tracked.front().command.unit.empty()
+                               ? ""
+                               : " (" + shape.tracked.front().command.unit + ")";
   const std::string first = shape.inputs.empty() ? "" : "RMS " + shape.inputs.front().name;
   const std::string first_unit = shape.inputs.empty() ? "" : "(" + shape.inputs.front().unit + ")";
   std::string text;
   append(text, "%-*s  %-22s %-13s", w, "", "", "");
-  if (axes > 0) append(text, " %*s %*s", 9 * (axes + 1), ("RMS tracking error" + unit).c_str(), 9 * axes, ("max tracking error" + unit).c_str());
+  if (axes > 0)
+    append(text, " %*s %18s  %*s", 9 * axes, ("RMS tracking error" + unit).c_str(), "", 9 * axes,
+           ("max tracking error" + unit).c_str());
   append(text, " %9s %9s %11s %11s %17s\n", first.c_str(), shape.inputs.size() > 1 ? "RMS other" : "", "", "",
          timing ? "in-flight us/step" : "");
   append(text, "%-*s  %-22s %-13s", w, "controller", "status", "information");
   if (axes > 0) {
+    text += " ";
     for (const auto& tracked : shape.tracked) append(text, "%9s", tracked.axis.c_str());
-    append(text, "%9s ", "3-D");
+    append(text, " %18s  ", ("RMS 3-D error" + unit).c_str());
     for (const auto& tracked : shape.tracked) append(text, "%9s", tracked.axis.c_str());
   }
   append(text, " %9s %9s %11s %11s %8s %8s\n", first_unit.c_str(), shape.inputs.size() > 1 ? "inputs" : "", "J_dev",
@@ -53,8 +58,9 @@ std::string comparison_table(const std::vector<RunResult>& runs) {
     append(text, "%-*s  %-22s %-13s", w, run.spec.label.c_str(), status_text(s).c_str(),
            information_set(run).c_str());
     if (axes > 0) {
+      text += " ";
       for (Eigen::Index k = 0; k < s.rms_tracking_error.size(); ++k) append(text, "%9.4f", s.rms_tracking_error[k]);
-      append(text, "%9.4f ", s.rms_tracking_error.norm());
+      append(text, " %18.4f  ", s.rms_tracking_error.norm());
       for (Eigen::Index k = 0; k < s.max_tracking_error.size(); ++k) append(text, "%9.4f", s.max_tracking_error[k]);
     }
     append(text, " %9.4g %9.4f", s.command_rms.size() > 0 ? s.command_rms[0] : 0.0, other_inputs_effort(s));
@@ -68,7 +74,7 @@ std::string comparison_table(const std::vector<RunResult>& runs) {
     if (!run.summary.reason.empty()) text += run.spec.label + ": " + run.summary.reason + "\n";
   }
   if (timing)
-    text += "In-flight compute times include the simulation's noise around each step; `thetad bench` measures the "
+    text += "In-flight step times include the simulation's noise around each step; `thetad bench` measures the "
             "per-step cost.\n";
   return text;
 }

@@ -11,9 +11,10 @@
 
 namespace thetad {
 
-// The comparison table of several runs of one flight, one row per label: status, RMS and max
-// position error per axis, effort, cost J and the in-flight compute time per step (with a note
-// that it includes the simulation's noise: `thetad bench` measures the per-step cost).
+// The comparison table of several runs of one flight, one row per label: status, RMS position
+// error per axis and in 3-D (rms_error_m), max position error per axis, effort, J_dev, cost J and
+// the in-flight step time (with a note that it includes the simulation's noise: `thetad bench`
+// measures the per-step cost).
 std::string comparison_table(const std::vector<RunResult>& runs);
 
 // comparison.json: the flight (scenario, seed, disturbances, provenance) and, per run in order,

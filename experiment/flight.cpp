@@ -198,7 +198,7 @@ RunResult Flight::fly(PreparedController& prepared, Progress* progress, const st
   result.summary = std::move(flown.summary);
   if (!deviation) result.summary.cost_dev_weights = no_deviation;
   result.log = std::move(flown.log);
-  if (settings_.measure_compute_time) result.wall_seconds = wall;
+  if (settings_.measure_compute_time) result.wall_time_s = wall;
   if (progress) {
     char outcome[160];
     std::snprintf(outcome, sizeof outcome, "%s (%.1f s wall)", status_text(result.summary).c_str(), wall);

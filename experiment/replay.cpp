@@ -1,5 +1,6 @@
 #include "experiment/replay.hpp"
 
+#include <algorithm>
 #include <array>
 #include <iterator>
 #include <string>
@@ -10,6 +11,7 @@
 #include "experiment/disturbance_json.hpp"
 #include "experiment/flight.hpp"
 #include "experiment/result_json.hpp"
+#include "experiment/result_names.hpp"
 #include "experiment/sha256.hpp"
 #include "experiment/json_file.hpp"
 #include "experiment/plant_registry.hpp"
@@ -20,11 +22,14 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-// The figures that decide whether two runs are the same run (not the wall-clock ones).
-// (The tracking errors, under tracking_error_key(), besides.)
-constexpr const char* kCompared[] = {"status",          "reason",     "end_time_s",     "controller_samples",
-                                     "parameter_factors", "controller_counters", "control_effort", "saturation",
-                                     "cost", "cost_dev", "certificates"};
+// The summary's fields that do not decide whether two runs are the same run: what was asked for,
+// the words, and the wall-clock figures (in_flight_step_time_*).
+constexpr const char* kNotCompared[] = {"controller_name", "seed", "model_options", "settings", "definitions"};
+
+bool compared(const std::string& key) {
+  return std::find(std::begin(kNotCompared), std::end(kNotCompared), key) == std::end(kNotCompared) &&
+         !key.starts_with("in_flight_step_time_");
+}
 
 RunControls controls_of(const Json& settings, const Json& provenance) {
   RunControls controls;
@@ -39,8 +44,8 @@ RunControls controls_of(const Json& settings, const Json& provenance) {
   controls.duration = settings.at("duration_s").get<double>();
   controls.dt = settings.at("dt_s").get<double>();
   controls.log_every = settings.at("log_every").get<int>();
-  controls.summary_only = !settings.at("keep_log").get<bool>();
-  controls.timing = settings.at("measure_compute_time").get<bool>();
+  controls.summary_only = settings.at("summary_only").get<bool>();
+  controls.timing = settings.at("timing").get<bool>();
   controls.parameter_uncertainty = settings.at("parameter_uncertainty").get<bool>();
   controls.wind_gust = settings.at("wind_gust").at("enabled").get<bool>();
   const Json& noise = settings.at("noise");
@@ -55,8 +60,8 @@ RunControls controls_of(const Json& settings, const Json& provenance) {
   // Files written before the disturbance scales existed flew at the paper's strengths.
   controls.uncertainty_scale = settings.value("uncertainty_scale", 1.0);
   controls.noise_scale = noise.value("scale", 1.0);
-  controls.gust_scale = settings.at("wind_gust").value("amplitude_scale", 1.0);
-  controls.gust_onset = settings.at("wind_gust").value("onset_s", 0.0);
+  controls.gust_scale = settings.value("gust_scale", 1.0);
+  controls.gust_onset = settings.value("gust_onset_s", 0.0);
   controls.beyond_paper = read_beyond_paper(settings);
   return controls;
 }
@@ -93,11 +98,12 @@ Flight recorded_flight(const Json& recorded, const std::string& file) {
 }  // namespace
 
 Replay replay(const std::filesystem::path& result_file, Progress* progress) {
-  const Json recorded = read_json_file(result_file);
-  if (!recorded.is_object() || recorded.value("format", "") != kRunFormat)
+  const Json file = read_json_file(result_file);
+  if (!file.is_object() || file.value("format", "") != kRunFormat)
     throw Error(result_file.string() + ": not a thetad run result (format " + std::string(kRunFormat) + ")");
   try {
-    run_format_version(recorded, result_file.string());
+    const int version = run_format_version(file, result_file.string());
+    const Json recorded = with_current_names(file);
     const Flight flight = recorded_flight(recorded, result_file.string());
     ControllerSpec spec{recorded.at("label").get<std::string>(), recorded.at("controller").get<std::string>(),
                         json_to_yaml(recorded.at("controller_settings")), result_file.string(), {}};
@@ -108,16 +114,18 @@ Replay replay(const std::filesystem::path& result_file, Progress* progress) {
     PreparedController prepared = flight.prepare(spec);
     Replay outcome{flight.fly(prepared, progress), {}};
     const Json again = summary_json(outcome.result.summary);
-    std::vector<std::string> compared(std::begin(kCompared), std::end(kCompared));
-    compared.push_back(tracking_error_key(outcome.result.summary));
-    for (const std::string& field : compared) {
-      // An older result, or a run without certificates.
-      if ((field == "saturation" || field == "cost_dev" || field == "certificates") && !recorded.contains(field))
-        continue;
-      if (again.at(field) != recorded.at(field))
-        outcome.differences.push_back(std::string(field) + ": recorded " + recorded.at(field).dump() + ", replayed " +
-                                      again.at(field).dump());
+    for (const auto& [field, value] : again.items()) {
+      if (!compared(field)) continue;
+      if (!recorded.contains(field)) {
+        // A figure that an earlier version did not record (docs/glossary.md; result_json.hpp).
+        if (version < kRunFormatVersion) continue;
+        outcome.differences.push_back(field + ": not recorded, replayed " + value.dump());
+      } else if (value != recorded.at(field)) {
+        outcome.differences.push_back(field + ": recorded " + recorded.at(field).dump() + ", replayed " + value.dump());
+      }
     }
+    if (recorded.contains("certificates") && !again.contains("certificates"))
+      outcome.differences.push_back("certificates: recorded " + recorded.at("certificates").dump() + ", replayed none");
     return outcome;
   } catch (const Json::exception& error) {
     throw Error(result_file.string() + ": incomplete run result: " + error.what());

@@ -18,7 +18,9 @@ struct Replay {
 // it recorded it (results of format_version 1: the scenario file, which must still have the
 // recorded SHA-256), or the plant and its initial state, the controller with its recorded
 // settings, the seed, dt, duration, logging and disturbance switches. Compares every summary figure but the
-// wall-clock ones. Throws thetad::Error when the file cannot be replayed (and says why).
+// wall-clock ones, under the current names (with_current_names); a figure that the file's earlier
+// format_version did not record is not compared. Throws thetad::Error when the file cannot be
+// replayed (and says why).
 Replay replay(const std::filesystem::path& result_file, Progress* progress = nullptr);
 
 }  // namespace thetad

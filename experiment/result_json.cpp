@@ -26,16 +26,16 @@ Json settings_json(const sim::SimulationSettings& s) {
   j["controller_period_steps"] = s.controller_period_steps;
   j["controller_period_s"] = s.controller_period();
   j["log_every"] = s.log_every;
-  j["keep_log"] = s.keep_log;
+  j["summary_only"] = !s.keep_log;
   j["duration_s"] = s.duration;
   j["parameter_uncertainty"] = s.parameter_uncertainty;
   j["uncertainty_scale"] = s.uncertainty_scale;
   j["wind_gust"] = {{"enabled", s.wind_gust.enabled},
                     {"model", to_string(s.wind_gust.model)},
                     {"sigma_m_per_s", s.wind_gust.sigma},
-                    {"correlation_time_s", s.wind_gust.correlation_time},
-                    {"amplitude_scale", s.wind_gust.amplitude_scale},
-                    {"onset_s", s.wind_gust.onset}};
+                    {"correlation_time_s", s.wind_gust.correlation_time}};
+  j["gust_scale"] = s.wind_gust.amplitude_scale;
+  j["gust_onset_s"] = s.wind_gust.onset;
   j["noise"] = {{"measurement", s.noise.measurement},
                 {"measurement_on", to_string(s.noise.measurement_on)},
                 {"actuator", s.noise.actuator},
@@ -54,7 +54,7 @@ Json settings_json(const sim::SimulationSettings& s) {
                           {"upper", channels(s.actuator_limits.upper)},
                           {"rate_per_s", channels(s.actuator_limits.rate)}};
   write_beyond_paper(s, j);
-  j["measure_compute_time"] = s.measure_compute_time;
+  j["timing"] = s.measure_compute_time;
   return j;
 }
 
@@ -77,13 +77,31 @@ Json certificates_json(const std::vector<CertificateWorst>& certificates) {
   return j;
 }
 
-}  // namespace
-
-std::string tracking_error_key(const sim::RunSummary& summary) {
-  return summary.tracked.empty() || summary.tracked.front().command.unit.empty()
-             ? "tracking_error"
-             : "tracking_error_" + summary.tracked.front().command.unit;
+// What the summary's metrics mean, for a reader of the file without the docs (docs/glossary.md has
+// them all).
+Json definitions(const sim::RunSummary& summary) {
+  Json j = Json::object();
+  if (!summary.tracked.empty())
+    j["rms_error"] = "RMS over the controller samples of the true tracked state minus its command, per axis and in "
+                     "3-D; max_error the largest magnitude per axis, max_axis_error the largest of those";
+  j["rms_command"] = "RMS of the commanded input per channel over the controller samples";
+  j["saturated"] = "controller samples whose applied input the actuator limits changed, per channel and in all";
+  j["cost"] = "J = 1/2 sum_k (V_track' Q V_track + u_cmd' R u_cmd) T_c, Eq. 32 with Q, R of Eqs. 33-34, true V_track";
+  j["cost_dev"] = "J_dev = 1/2 sum_k (e' Q e + (u_cmd - u_r)' R (u_cmd - u_r)) T_c, e the true state's deviation "
+                  "from the commanded motion and its trim, u_r the trim's input (docs/model.md §7.2); one Q, R for "
+                  "every controller, named in cost_dev_weights";
+  if (summary.settings.measure_compute_time)
+    j["in_flight_step_time"] = "wall time of each control() call inside the flight, with the simulation around it: "
+                               "noisy; thetad bench measures the per-step cost";
+  return j;
 }
+
+// A channel's count; a summary made without the limiter's counts (none per channel) has none.
+std::int64_t count_of(const std::vector<std::int64_t>& counts, std::size_t channel) {
+  return channel < counts.size() ? counts[channel] : 0;
+}
+
+}  // namespace
 
 int run_format_version(const Json& result, const std::string& file) {
   const int version = result.value("format_version", 1);
@@ -112,7 +130,6 @@ std::string status_text(const sim::RunSummary& summary) {
 }
 
 Json summary_json(const sim::RunSummary& summary) {
-  const auto entries = [](const Eigen::VectorXd& v) { return Json(std::vector<double>(v.data(), v.data() + v.size())); };
   Json j;
   j["controller_name"] = summary.controller;
   j["seed"] = summary.settings.seed;
@@ -129,42 +146,33 @@ Json summary_json(const sim::RunSummary& summary) {
   j["controller_counters"] = counters;
   if (!summary.certificates.empty()) j["certificates"] = certificates_json(summary.certificates);
   j["settings"] = settings_json(summary.settings);
-  Json axes = Json::array();
-  for (const auto& tracked : summary.tracked) axes.push_back(tracked.axis);
-  j[tracking_error_key(summary)] = {{"axes", axes},
-                                    {"rms", entries(summary.rms_tracking_error)},
-                                    {"max", entries(summary.max_tracking_error)}};
-  Json effort;
-  effort["definition"] = "RMS of the commanded input per channel over the controller samples";
-  effort["rms"] = Json::object();
-  Json channels = Json::array();
-  for (std::size_t k = 0; k < summary.inputs.size(); ++k) {
-    effort["rms"][summary.inputs[k].header()] = summary.command_rms[static_cast<Eigen::Index>(k)];
-    channels.push_back(summary.inputs[k].name);
+  // Metrics are flat keys, the quantity first and the unit last (docs/glossary.md "Naming rules").
+  if (!summary.tracked.empty()) {
+    const std::string unit = summary.tracked.front().command.unit;
+    const auto key = [&unit](const std::string& quantity) { return unit.empty() ? quantity : quantity + "_" + unit; };
+    for (std::size_t i = 0; i < summary.tracked.size(); ++i)
+      j[key("rms_error_" + summary.tracked[i].axis)] = summary.rms_tracking_error[static_cast<Eigen::Index>(i)];
+    j[key("rms_error")] = summary.rms_tracking_error.norm();
+    for (std::size_t i = 0; i < summary.tracked.size(); ++i)
+      j[key("max_error_" + summary.tracked[i].axis)] = summary.max_tracking_error[static_cast<Eigen::Index>(i)];
+    j[key("max_axis_error")] = summary.max_tracking_error.maxCoeff();
   }
-  j["control_effort"] = effort;
-  j["saturation"] = {{"definition", "controller samples whose applied input the actuator limits changed"},
-                     {"channels", channels},
-                     {"magnitude", summary.saturation.magnitude},
-                     {"rate", summary.saturation.rate},
-                     {"samples_limited", summary.saturation.samples_limited}};
-  j["cost"] = {{"definition",
-                "J = 1/2 sum_k (V_track' Q V_track + u_cmd' R u_cmd) T_c, Eq. 32 with Q, R of Eqs. 33-34, "
-                "true V_track"},
-               {"J", summary.cost}};
-  j["cost_dev"] = {{"definition",
-                    "J_dev = 1/2 sum_k (e' Q e + (u_cmd - u_r)' R (u_cmd - u_r)) T_c, e the true state's deviation "
-                    "from the commanded motion and its trim, u_r the trim's input (docs/model.md §7.2); one Q, R for "
-                    "every controller"},
-                   {"weights", summary.cost_dev_weights.empty() ? Json(nullptr) : Json(summary.cost_dev_weights)},
-                   {"J_dev", summary.cost_dev ? Json(*summary.cost_dev) : Json(nullptr)}};
+  for (std::size_t k = 0; k < summary.inputs.size(); ++k)
+    j["rms_command_" + summary.inputs[k].header()] = summary.command_rms[static_cast<Eigen::Index>(k)];
+  for (std::size_t k = 0; k < summary.inputs.size(); ++k)
+    j["saturated_magnitude_" + summary.inputs[k].name] = count_of(summary.saturation.magnitude, k);
+  for (std::size_t k = 0; k < summary.inputs.size(); ++k)
+    j["saturated_rate_" + summary.inputs[k].name] = count_of(summary.saturation.rate, k);
+  j["saturated_samples"] = summary.saturation.samples_limited;
+  j["cost"] = summary.cost;
+  j["cost_dev"] = summary.cost_dev ? Json(*summary.cost_dev) : Json(nullptr);
+  j["cost_dev_weights"] = summary.cost_dev_weights.empty() ? Json(nullptr) : Json(summary.cost_dev_weights);
   if (summary.settings.measure_compute_time) {
-    j["compute_time_ns"] = {{"note", "wall time of each control() call inside the flight, with the simulation "
-                                     "around it: noisy; thetad bench measures the per-step cost"},
-                            {"mean", summary.compute_ns_mean},
-                            {"median", summary.compute_ns_median},
-                            {"p99", summary.compute_ns_p99}};
+    j["in_flight_step_time_mean_us"] = summary.compute_ns_mean * 1e-3;
+    j["in_flight_step_time_median_us"] = summary.compute_ns_median * 1e-3;
+    j["in_flight_step_time_p99_us"] = summary.compute_ns_p99 * 1e-3;
   }
+  j["definitions"] = definitions(summary);
   return j;
 }
 
@@ -188,7 +196,7 @@ Json result_json(const RunResult& result, const LogFile* log) {
     j["log"] = nullptr;
   }
   j["provenance"] = to_json(result.provenance);
-  if (result.summary.settings.measure_compute_time) j["wall_seconds"] = result.wall_seconds;
+  if (result.summary.settings.measure_compute_time) j["wall_time_s"] = result.wall_time_s;
   return j;
 }
 

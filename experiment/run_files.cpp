@@ -15,6 +15,7 @@
 #include "core/error.hpp"
 #include "core/sim/helicopter_disturbances.hpp"
 #include "experiment/result_json.hpp"
+#include "experiment/result_names.hpp"
 #include "experiment/sha256.hpp"
 #include "experiment/json_file.hpp"
 
@@ -165,14 +166,15 @@ RunFiles write_run_files(const RunResult& result, const fs::path& folder) {
 StoredRun read_run_files(const fs::path& json_file) {
   StoredRun run;
   run.json_file = json_file;
-  run.result = read_json_file(json_file);
+  const Json file = read_json_file(json_file);
   const std::string where = json_file.string() + ": ";
-  if (!run.result.is_object() || run.result.value("format", "") != kRunFormat)
+  if (!file.is_object() || file.value("format", "") != kRunFormat)
     throw Error(where + "not a thetad run result (format '" + std::string(kRunFormat) +
                 "'; results of an older thetad must be flown again)");
-  run_format_version(run.result, json_file.string());
+  run_format_version(file, json_file.string());
+  run.result = with_current_names(file);
   run.label = run.result.value("label", "");
-  const Json& log = run.result["log"];
+  const Json log = file.value("log", Json(nullptr));
   if (log.is_null()) return run;
   const std::string csv_name = log.value("csv", "");
   run.csv_file = json_file.parent_path() / csv_name;
@@ -181,14 +183,18 @@ StoredRun read_run_files(const fs::path& json_file) {
   if (sha256_of_file(run.csv_file) != log.value("sha256", ""))
     throw Error(where + "its log " + run.csv_file.string() +
                 " has another SHA-256 than the result records: the two files come from different runs");
-  const bool timing = run.result.at("settings").at("measure_compute_time").get<bool>();
+  // The header is checked as the file wrote it; the columns are then given their current names.
   if (log.contains("columns")) {
     for (const auto& column : log.at("columns"))
       run.columns.push_back({column.at("name").get<std::string>(), column.at("unit").get<std::string>()});
   } else {
-    run.columns = log_columns(sim::helicopter_log_schema(), timing);
+    // Version 1 recorded no columns: the helicopter's, the wall-clock one under its name then.
+    run.columns = log_columns(sim::helicopter_log_schema(), run.result.at("settings").at("timing").get<bool>());
+    if (!run.columns.empty() && run.columns.back().header() == sim::step_time_column().header())
+      run.columns.back() = earlier_step_time_column();
   }
   check_header(run.csv_file, run.columns);
+  for (LogColumn& column : run.columns) column = current_log_column(column);
   return run;
 }
 

@@ -59,13 +59,14 @@ struct StoredRun {
   std::string label;
   std::filesystem::path json_file;
   std::filesystem::path csv_file;  // empty for a summary-only run
-  nlohmann::ordered_json result;
-  std::vector<LogColumn> columns;  // of the CSV
+  nlohmann::ordered_json result;  // under the current names (with_current_names)
+  std::vector<LogColumn> columns;  // of the CSV, under their current names
 };
 
 // Reads <label>.json and checks its format and, when it names a log, that the CSV exists, has that
 // SHA-256 and the header the JSON records (the helicopter's log_columns() in results written before
-// the JSON recorded it). Throws thetad::Error naming the file and the reason.
+// the JSON recorded it). A result of an earlier format_version comes with the current names.
+// Throws thetad::Error naming the file and the reason.
 StoredRun read_run_files(const std::filesystem::path& json_file);
 
 // Every run in `folder`: through its comparison.json (its order; each result must be the file it

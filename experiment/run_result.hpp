@@ -20,7 +20,7 @@ struct RunResult {
   sim::RunSummary summary;
   sim::RunLog log;      // empty when summary-only
   Provenance provenance;
-  double wall_seconds = 0.0;  // of the flight; 0 without timing
+  double wall_time_s = 0.0;  // of the flight; 0 without timing
 
   bool completed() const { return summary.status == sim::RunStatus::completed; }
 };

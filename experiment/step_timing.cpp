@@ -128,7 +128,8 @@ RecordedSamples record_samples(const Flight& flight, PreparedController& prepare
   PreparedController recorder{prepared.spec, std::make_unique<SampleRecorder>(prepared.controller->clone(), samples),
                               prepared.settings, prepared.origin};
   const RunResult run = flight.fly(recorder, progress, "recording with " + prepared.spec.label + ":");
-  if (!run.completed()) samples.diverged = run.summary.reason;
+  samples.status = run.summary.status;
+  samples.reason = run.summary.reason;
   if (samples.size() == 0)
     throw Error("bench: the recording flight with " + prepared.spec.label + " kept no sample (" + run.summary.reason + ")");
   return samples;
@@ -258,7 +259,8 @@ std::string step_timing_table(const StepTimingReport& report) {
 
 nlohmann::ordered_json to_json(const StepTimingReport& report) {
   nlohmann::ordered_json j;
-  j["format"] = "thetad-bench-1";
+  j["format"] = kBenchFormat;
+  j["format_version"] = kBenchFormatVersion;
   j["timed_steps_per_pass"] = report.samples;
   j["segments"] = report.options.segments;
   j["repetitions"] = report.repetitions;
@@ -276,11 +278,11 @@ nlohmann::ordered_json to_json(const StepTimingReport& report) {
     j["controllers"].push_back({{"label", t.label},
                                 {"controller", t.controller},
                                 {"calls", t.nanoseconds.size()},
-                                {"median_ns", t.median},
-                                {"p10_ns", t.p10},
-                                {"p90_ns", t.p90},
-                                {"p99_ns", t.p99},
-                                {"max_ns", t.max},
+                                {"step_time_median_us", t.median * 1e-3},
+                                {"step_time_p10_us", t.p10 * 1e-3},
+                                {"step_time_p90_us", t.p90 * 1e-3},
+                                {"step_time_p99_us", t.p99 * 1e-3},
+                                {"step_time_max_us", t.max * 1e-3},
                                 {"overruns", t.overruns},
                                 {"median_drift_ns", t.median_drift},
                                 {"iterations_mean", t.iterations_mean},
@@ -296,7 +298,8 @@ nlohmann::ordered_json bench_json(const Flight& flight, const RecordedSamples& s
   Provenance provenance = flight.provenance();
   stamp_host_and_time(provenance);
   j["recorded_with"] = samples.recorded_with;
-  j["recording_diverged"] = samples.diverged;
+  j["recording_status"] = sim::status_name(samples.status);
+  j["recording_reason"] = samples.reason;
   j["provenance"] = to_json(provenance);
   return j;
 }

@@ -24,7 +24,9 @@ struct RecordedSamples {
   std::vector<Eigen::VectorXd> measured;
   std::vector<Reference> reference;
   std::string recorded_with;  // the label of the controller that flew the recording
-  std::string diverged;       // why the recording flight diverged (its samples up to then are kept); "" if it completed
+  // How the recording flight ended, and why when it did not complete (its samples up to then are kept).
+  sim::RunStatus status = sim::RunStatus::completed;
+  std::string reason;
   std::size_t size() const { return time.size(); }
 };
 
@@ -103,8 +105,14 @@ StepTimingReport time_steps(std::vector<PreparedController>& controllers, const 
 std::string step_timing_table(const StepTimingReport& report);
 nlohmann::ordered_json to_json(const StepTimingReport& report);
 
-// bench.json: the report with the recording (who flew it, whether it diverged) and the flight's
-// provenance stamped with the host and the time.
+// bench.json: the report with the recording (who flew it, how it ended) and the flight's
+// provenance stamped with the host and the time. Its "format_version" says which names it has:
+//   1 (no "format_version"): per controller median_ns, p10_ns, p90_ns, p99_ns, max_ns;
+//      "recording_diverged" (the reason, "" when the recording completed).
+//   2: the names of docs/glossary.md: step_time_{median,p10,p90,p99,max}_us (µs); "recording_status"
+//      (completed, diverged, failed) and "recording_reason".
+inline constexpr const char* kBenchFormat = "thetad-bench-1";
+inline constexpr int kBenchFormatVersion = 2;
 nlohmann::ordered_json bench_json(const Flight& flight, const RecordedSamples& samples, const StepTimingReport& report);
 
 }  // namespace thetad

@@ -89,7 +89,7 @@ std::vector<double> reference_row(const Reference& r) {
 std::string check_data_of(const Flight& flight, PreparedController& prepared, const ExportedDesign& design,
                           const ExportCheckOptions& options, ExportedController& exported) {
   RecordedSamples samples = record_samples(flight, prepared);
-  exported.recording_diverged = samples.diverged;
+  if (samples.status != sim::RunStatus::completed) exported.recording_diverged = samples.reason;
   const std::unique_ptr<Controller> library = prepared.controller->clone();
   library->reset(flight.initial_state(), 0.0);
   std::vector<Eigen::VectorXd> inputs;

@@ -180,7 +180,7 @@ SolvedOptimum solve(const Flight& flight, const OptimalControlProblem& problem, 
   solved.run = optimum_run(flight, problem, solved.solution, from, options.control_interval,
                            options.solver.ipopt.tolerance, label);
   if (flight.settings().measure_compute_time) {
-    solved.run.wall_seconds = wall;
+    solved.run.wall_time_s = wall;
     stamp_host_and_time(solved.run.provenance);
   }
   return solved;

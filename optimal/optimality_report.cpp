@@ -79,7 +79,8 @@ nlohmann::ordered_json optimality_json(const Flight& flight, const OptimalityGap
     nlohmann::ordered_json entry = {
         {"label", run.spec.label},
         {"controller", run.spec.controller},
-        {"status", status_text(run.summary)},
+        {"status", sim::status_name(run.summary.status)},
+        {"end_time_s", run.summary.end_time},
         {"cost", optimum ? number_or_null(gap.costs[i]) : nullptr},
         {"optimum", optimum ? nlohmann::ordered_json(optimum->optimum.run.spec.label) : nullptr},
         {"optimal_cost", optimum ? number_or_null(optimum->cost(gap.cost)) : nullptr},
@@ -96,6 +97,7 @@ nlohmann::ordered_json optimality_json(const Flight& flight, const OptimalityGap
     if (const auto deviation = flight.deviation_cost(why_not)) weights = deviation->weights().name;
   }
   return {{"format", kOptimalityFormat},
+          {"format_version", kOptimalityFormatVersion},
           {"scenario", flight.scenario().name},
           {"start_s", first.start_time()},
           {"horizon_s", first.horizon()},

@@ -11,6 +11,11 @@
 namespace thetad {
 
 inline constexpr const char* kOptimalityFormat = "thetad-optimality-3";
+// optimality.json's "format_version" within that format:
+//   1 (no "format_version"): controllers[].status is the status text ("diverged at 1.234 s").
+//   2: controllers[].status is the bare status (completed, diverged, failed) with end_time_s beside
+//      it, as in a run result (docs/glossary.md "How a run ended").
+inline constexpr int kOptimalityFormatVersion = 2;
 
 // Every run of a gap in the order its files are written and reported: the flights, then per
 // optimum the optimum and, with bounds, the unbounded one.

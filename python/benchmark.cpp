@@ -51,7 +51,7 @@ void bind_bench(py::module_& module) {
       "`thetad bench`: the per-step cost of each controller on the states the first one flies through "
       "`scenario`, outside the simulation loop, pinned to one core (cpu: -1 the last this process may use, -2 "
       "none). Returns bench.json's content as a dict (its 'controllers' make a pandas.DataFrame; 'table' is the "
-      "printed table). Run controls as keywords (duration, seed, ...). progress and Ctrl-C as for run (the "
+      "printed table). Run controls as keywords (duration_s, seed, ...). progress and Ctrl-C as for run (the "
       "recording flight; the timing itself is not interruptible).");
 }
 

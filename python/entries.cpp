@@ -2,6 +2,7 @@
 
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "python/python_controller.hpp"
@@ -11,11 +12,16 @@ namespace thetad::python {
 RunControls run_controls(const py::kwargs& keywords) {
   RunControls controls;
   const auto flag = [](py::handle value) { return value.cast<bool>(); };
+  // duration and dt are the earlier names of duration_s and dt_s (docs/glossary.md), kept working.
+  for (const auto& [current, earlier] : {std::pair{"duration_s", "duration"}, std::pair{"dt_s", "dt"}}) {
+    if (keywords.contains(current) && keywords.contains(earlier))
+      throw py::type_error(std::string("give ") + current + " or its earlier name " + earlier + ", not both");
+  }
   for (const auto& [key, value] : keywords) {
     const std::string name = key.cast<std::string>();
     if (name == "seed") controls.seed = value.cast<std::uint64_t>();
-    else if (name == "duration") controls.duration = value.cast<double>();
-    else if (name == "dt") controls.dt = value.cast<double>();
+    else if (name == "duration_s" || name == "duration") controls.duration = value.cast<double>();
+    else if (name == "dt_s" || name == "dt") controls.dt = value.cast<double>();
     else if (name == "log_every") controls.log_every = value.cast<int>();
     else if (name == "summary_only") controls.summary_only = flag(value);
     else if (name == "timing") controls.timing = flag(value);
@@ -30,7 +36,7 @@ RunControls run_controls(const py::kwargs& keywords) {
     else if (name == "anti_windup") controls.anti_windup = flag(value);
     else
       throw py::type_error("unknown run control '" + name +
-                           "' (seed, duration, dt, log_every, summary_only, timing, ideal, parameter_uncertainty, "
+                           "' (seed, duration_s, dt_s, log_every, summary_only, timing, ideal, parameter_uncertainty, "
                            "wind_gust, measurement_noise, actuator_noise, wind_noise, induced_velocity_noise, actuator_limits, anti_windup)");
   }
   return controls;

@@ -48,14 +48,17 @@ void bind_flights(py::module_& module) {
                         "One flight: summary, settings, provenance and (unless summary_only) the log")
       .def_property_readonly("label", [](const RunResult& r) { return r.spec.label; })
       .def_property_readonly("controller", [](const RunResult& r) { return r.spec.controller; })
-      .def_property_readonly("origin", [](const RunResult& r) { return r.controller_origin; })
+      .def_property_readonly("controller_origin", [](const RunResult& r) { return r.controller_origin; })
       .def_property_readonly("completed", &RunResult::completed)
-      .def_property_readonly("status", [](const RunResult& r) { return status_text(r.summary); })
+      .def_property_readonly("status", [](const RunResult& r) { return sim::status_name(r.summary.status); },
+                             "completed, diverged or failed, as the result file says")
+      .def_property_readonly("status_text", [](const RunResult& r) { return status_text(r.summary); },
+                             "'completed', or 'diverged at T s' / 'failed at T s', for display")
       .def_property_readonly("reason", [](const RunResult& r) { return r.summary.reason; })
       .def_property_readonly("summary", [](const RunResult& r) { return to_python(summary_json(r.summary)); })
       .def_property_readonly("settings", [](const RunResult& r) { return to_python(yaml_to_json(r.settings)); })
       .def_property_readonly("provenance", [](const RunResult& r) { return to_python(to_json(r.provenance)); })
-      .def_property_readonly("wall_seconds", [](const RunResult& r) { return r.wall_seconds; })
+      .def_property_readonly("wall_time_s", [](const RunResult& r) { return r.wall_time_s; })
       .def_property_readonly("columns", &column_headers, "the log's columns, NAME_UNIT as in the CSV header")
       .def_property_readonly("log", &log_array, "the log, (rows, columns), read-only, no copy; empty when summary_only")
       .def(
@@ -102,9 +105,10 @@ void bind_flights(py::module_& module) {
       py::arg("progress") = py::none(),
       "Flies `controller` (a registered name or spec string, thetad.controller(...), or a thetad.Controller "
       "subclass instance) through `scenario` (a file or a shipped scenario's name). Run controls as keywords: "
-      "seed, duration, dt, log_every, summary_only, timing, ideal, the disturbance switches, actuator_limits and "
-      "anti_windup. progress: None or progress(t, duration), called with the simulated seconds at most 10 times "
-      "a second and once at the end. Ctrl-C stops the flight within ~0.1 s and raises KeyboardInterrupt.");
+      "seed, duration_s, dt_s, log_every, summary_only, timing, ideal, the disturbance switches, actuator_limits and "
+      "anti_windup (duration and dt, the earlier names, still work). progress: None or progress(t, duration), "
+      "called with the simulated seconds at most 10 times a second and once at the end. Ctrl-C stops the flight "
+      "within ~0.1 s and raises KeyboardInterrupt.");
 
   module.def(
       "compare",

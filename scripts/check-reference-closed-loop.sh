@@ -24,14 +24,14 @@ for row in "${references[@]}"; do
 import json, sys
 path, scenario, *reference = sys.argv[1:]
 summary = json.load(open(path))
-got = summary["tracking_error_m"]["max"]
+got = [summary[f"max_error_{axis}_m"] for axis in "xyz"]
 ok = summary["status"] == "completed"
 line = []
 for axis, g, r in zip("xyz", got, map(float, reference)):
     bound = max(0.05 * r, 0.001)
     good = abs(g - r) <= bound
     ok &= good
-    line.append(f"{axis} {g:.4f} (spec {r}, {'ok' if good else 'OFF'})")
+    line.append(f"{axis} {g:.4f} (reference {r}, {'ok' if good else 'OFF'})")
 print(f"{scenario}: {summary['status']}; max error " + ", ".join(line))
 sys.exit(0 if ok else 1)
 PY

@@ -44,13 +44,12 @@ for index in "${!cases[@]}"; do
   "$thetad" --plugin "$dir/exported.so" compare $options --controllers "$spec,$label-exported,$label-float" \
     --summary-only --no-timing --quiet --out "$dir/flights" >/dev/null || true  # a failed run is a result
   /usr/bin/python3 - "$dir/flights" "$name" "$label" <<'EOF'
-import json, math, sys
+import json, sys
 folder, name, label = sys.argv[1:]
 def figures(run):
     d = json.load(open(f"{folder}/{run}.json"))
-    rms = math.sqrt(sum(a * a for a in d["tracking_error_m"]["rms"]))
     status = d["status"] if d["status"] == "completed" else f"{d['status']} at {d['end_time_s']:.2f} s"
-    return status, d["cost"]["J"], d["cost_dev"]["J_dev"], rms
+    return status, d["cost"], d["cost_dev"], d["rms_error_m"]
 library = figures(label)
 for run in (label, f"{label}-exported", f"{label}-float"):
     status, j, j_dev, rms = figures(run)

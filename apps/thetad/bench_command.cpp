@@ -61,8 +61,9 @@ int run_bench(const BenchArguments& arguments) {
     write_file_atomically(options.out, bench_json(flight, samples, report).dump(2) + "\n");
     std::printf("Wrote %s.\n", options.out.c_str());
   }
-  if (samples.diverged.empty()) return kExitCompleted;
-  std::printf("The recording flight diverged (%s): the states are those up to then.\n", samples.diverged.c_str());
+  if (samples.status == sim::RunStatus::completed) return kExitCompleted;
+  std::printf("The recording flight %s (%s): the states are those up to then.\n", sim::status_name(samples.status),
+              samples.reason.c_str());
   return kExitDiverged;
 }
 

@@ -52,8 +52,8 @@ void print_summary(const RunResult& result, const Flight& flight, const RunFiles
   std::printf("RMS command: %s; cost J = %.6g over %lld controller samples.\n", effort.c_str(), s.cost,
               static_cast<long long>(s.controller_samples));
   if (s.settings.measure_compute_time)
-    std::printf("In-flight compute time per step (includes the simulation's noise; thetad bench measures the "
-                "per-step cost): median %.1f us, p99 %.1f us.\n",
+    std::printf("In-flight step time (includes the simulation's noise; thetad bench measures the per-step cost): "
+                "median %.1f us, p99 %.1f us.\n",
                 s.compute_ns_median * 1e-3, s.compute_ns_p99 * 1e-3);
   for (const auto& [counter, count] : s.controller_counters) std::printf("Controller counter %s: %g.\n", counter.c_str(), count);
   for (const CertificateWorst& worst : s.certificates)
@@ -155,8 +155,8 @@ void add_flight_options(CLI::App& command, FlightOptions& options, bool scenario
         "--summary-only", [&options](std::int64_t) { options.controls.summary_only = true; },
         "Write no log (CSV), only the result JSON (complete summary)");
     command.add_flag("--no-timing", options.no_timing,
-                     "Measure no wall-clock time (no compute-time column, host or start time): reruns with the same "
-                     "seed give byte-identical files");
+                     "Measure no wall-clock time (no in-flight step-time column, host or start time): reruns with "
+                     "the same seed give byte-identical files");
   }
   command.add_flag("--quiet", options.quiet, "No progress display");
   command.add_option("--out", options.out, "Output directory (created; checked before anything flies)");

@@ -46,8 +46,8 @@ void RunMetrics::finish(RunSummary& summary) {
   double sum = 0.0;
   for (const auto s : compute_ns_) sum += static_cast<double>(s);
   summary.compute_ns_mean = sum / static_cast<double>(n);
-  summary.compute_ns_median = n % 2 == 1 ? static_cast<double>(compute_ns_[n / 2])
-                                         : 0.5 * static_cast<double>(compute_ns_[n / 2 - 1] + compute_ns_[n / 2]);
+  // Nearest rank, as thetad bench's median (docs/glossary.md "Compute time"): one definition for both.
+  summary.compute_ns_median = nearest_rank(compute_ns_, 0.5);
   summary.compute_ns_p99 = nearest_rank(compute_ns_, 0.99);
 }
 

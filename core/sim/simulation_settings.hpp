@@ -50,7 +50,7 @@ struct SimulationSettings {
   // Servo magnitude and rate limits on the applied input: the X-Cell's (docs/model.md §12), on
   // unless turned off; the paper's setting has none.
   ActuatorLimits actuator_limits = ActuatorLimits::x_cell();
-  // Off makes the compute_ns column and the timing statistics 0, so that two runs with the same
+  // Off makes the in_flight_step_time_ns column and the timing statistics 0, so that two runs with the same
   // seed give byte-identical files (the only non-deterministic quantity of a run is its timing).
   bool measure_compute_time = true;
   std::uint64_t seed = 1;

@@ -25,12 +25,13 @@ struct RunResult {
 // them: t; the commands of the tracked states; the true state; the measured state (meas_); the
 // commanded input (cmd_); the applied input (app_); the disturbances' own columns; the
 // controller's certificates (ControlLaw::certificate_columns), if any; the control step's wall
-// time (compute_ns).
+// time (in_flight_step_time_ns).
 std::vector<LogColumn> log_schema(const SdcPlant& plant, const Disturbances& disturbances,
                                   const std::vector<CertificateColumn>& certificates = {});
-// The last column of every log: the control step's wall time, which the files of runs flown
-// without timing leave out.
-inline LogColumn step_time_column() { return {"compute", "ns"}; }
+// The last column of every log: the control step's wall time in flight (docs/glossary.md "Compute
+// time"), which the files of runs flown without timing leave out. Result files before format_version 4
+// named it compute_ns (experiment/result_names.hpp).
+inline LogColumn step_time_column() { return {"in_flight_step_time", "ns"}; }
 
 // Flies `law` on the plant that disturbances.start() returns, from x0 for settings.duration: the one
 // flight loop of every plant.

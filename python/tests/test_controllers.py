@@ -70,7 +70,7 @@ def test_a_python_pd_controller_returns_to_hover(tmp_path, hover_trim, offset):
     result, settling_time, final_error = recover_hover(tmp_path, hover_trim, HoverPD(hover_trim), offset, 8.0, 0.1)
     assert result.completed, result.reason
     assert (result.label, result.controller) == ("HoverPD", "python:HoverPD")
-    assert result.origin.startswith("python class ") and result.origin.endswith("HoverPD")
+    assert result.controller_origin.startswith("python class ") and result.controller_origin.endswith("HoverPD")
     assert settling_time < 3.0
     assert final_error < 0.1
 
@@ -99,8 +99,9 @@ class Returns(thetad.Controller):
 
 
 def test_a_python_exception_ends_the_run_as_failed():
-    result = thetad.run("hover-step", Raises(after=0.05), label="raiser", duration=0.2, summary_only=True)
+    result = thetad.run("hover-step", Raises(after=0.05), label="raiser", duration_s=0.2, summary_only=True)
     assert not result.completed and result.label == "raiser"
+    assert result.status == "failed" and result.status_text.startswith("failed at 0.05")
     assert "Raises.compute raised ZeroDivisionError: the controller gave up" in result.reason
     assert result.summary["end_time_s"] == pytest.approx(0.05, abs=1e-3)
 
@@ -114,8 +115,8 @@ def test_a_python_exception_ends_the_run_as_failed():
     ],
 )
 def test_a_bad_python_result_ends_the_run_as_failed(u, reason):
-    result = thetad.run("hover-step", Returns(u), duration=0.1, summary_only=True)
-    assert not result.completed and result.label == "returns"
+    result = thetad.run("hover-step", Returns(u), duration_s=0.1, summary_only=True)
+    assert not result.completed and result.label == "returns" and result.status == "failed"
     assert reason in result.reason
 
 
@@ -145,7 +146,7 @@ def test_clone_of_a_python_controller(hover_trim):
     orphan = Counter().clone()  # the only reference to its Counter is the handle's
     orphan.compute(0.0, x, position)
     # A clone flies as its original does.
-    result = thetad.run("hover-step", handle, label="handle", duration=0.01, summary_only=True)
+    result = thetad.run("hover-step", handle, label="handle", duration_s=0.01, summary_only=True)
     assert result.completed and original.calls == 1 + 10
     # With one: the C++ clone() calls it and the copy is independent.
     copyable = CopyableCounter()
@@ -155,7 +156,7 @@ def test_clone_of_a_python_controller(hover_trim):
 
 
 def test_a_controller_without_compute_fails_its_run():
-    result = thetad.run("hover-step", thetad.Controller(), label="bare", duration=0.1, summary_only=True)
+    result = thetad.run("hover-step", thetad.Controller(), label="bare", duration_s=0.1, summary_only=True)
     assert not result.completed and "does not define compute" in result.reason
 
 
@@ -165,16 +166,16 @@ def test_reset_is_called_with_the_initial_state():
             self.x0, self.t0 = x0, t0
 
     recorder = Recorder([80.0, 0.0, 0.0, 0.0, 0.0])
-    thetad.run("hover-step", recorder, duration=0.01, summary_only=True)
+    thetad.run("hover-step", recorder, duration_s=0.01, summary_only=True)
     assert recorder.x0.shape == (18,) and recorder.t0 == 0.0 and recorder.x0[17] == 1.0
 
 
 def test_python_and_registered_controllers_compare_on_one_flight(hover_trim):
     results = thetad.compare("hover-step", ["lqr", thetad.controller("theta-d", label="td"), HoverPD(hover_trim)],
-                             duration=0.5, seed=3, summary_only=True)
+                             duration_s=0.5, seed=3, summary_only=True)
     assert [r.label for r in results] == ["lqr", "td", "HoverPD"]
     assert {r.provenance["seed"] for r in results} == {3}
     table = thetad.comparison_table(results)
     assert all(label in table for label in ("lqr", "td", "HoverPD"))
     with pytest.raises(thetad.Error, match="label"):
-        thetad.compare("hover-step", ["lqr", "lqr"], duration=0.1)
+        thetad.compare("hover-step", ["lqr", "lqr"], duration_s=0.1)

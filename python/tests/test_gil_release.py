@@ -13,14 +13,14 @@ import thetad
 
 
 def test_another_python_thread_runs_while_a_flight_flies():
-    thetad.run("scenario-1", "theta-d", duration=0.1, summary_only=True, timing=False)  # warm
+    thetad.run("scenario-1", "theta-d", duration_s=0.1, summary_only=True, timing=False)  # warm
     window = {}
     started = threading.Event()
 
     def flight():
         started.set()
         window["start"] = time.perf_counter()
-        thetad.run("scenario-1", "theta-d", duration=10.0, summary_only=True, timing=False)
+        thetad.run("scenario-1", "theta-d", duration_s=10.0, summary_only=True, timing=False)
         window["end"] = time.perf_counter()
 
     thread = threading.Thread(target=flight)

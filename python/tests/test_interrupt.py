@@ -26,9 +26,9 @@ SETUP = """
 
     folder, kind = sys.argv[1:]
     controller = Wrapped() if kind == "python" else "theta-d"
-    thetad.run("scenario-1", controller, duration=0.1, summary_only=True, timing=False)  # warm
+    thetad.run("scenario-1", controller, duration_s=0.1, summary_only=True, timing=False)  # warm
 """
-FLIGHT = 'thetad.run("scenario-1", controller, duration=3600.0, summary_only=True, timing=False).write(folder)'
+FLIGHT = 'thetad.run("scenario-1", controller, duration_s=3600.0, summary_only=True, timing=False).write(folder)'
 
 
 @pytest.mark.parametrize("kind", ["c++", "python"])
@@ -42,7 +42,7 @@ def test_ctrl_c_stops_a_flight_within_a_second(tmp_path, kind):
 
 def test_progress_is_called_with_increasing_times_at_most_ten_times_a_second():
     calls = []
-    result = thetad.run("scenario-1", "theta-d", duration=30.0, summary_only=True, timing=False,
+    result = thetad.run("scenario-1", "theta-d", duration_s=30.0, summary_only=True, timing=False,
                         progress=lambda t, duration: calls.append((time.monotonic(), t, duration)))
     assert len(calls) >= 2
     times = [t for _, t, _ in calls]
@@ -59,14 +59,14 @@ def test_an_exception_in_progress_stops_the_flight():
 
     started = time.monotonic()
     with pytest.raises(RuntimeError, match="stop at"):
-        thetad.run("scenario-1", "theta-d", duration=3600.0, summary_only=True, timing=False, progress=progress)
+        thetad.run("scenario-1", "theta-d", duration_s=3600.0, summary_only=True, timing=False, progress=progress)
     assert time.monotonic() - started < 10.0
     with pytest.raises(TypeError, match=r"progress: expected None, True \(a bar\) or a callable"):
-        thetad.run("scenario-1", "theta-d", duration=0.1, progress=3)
+        thetad.run("scenario-1", "theta-d", duration_s=0.1, progress=3)
 
 
 def test_compare_reports_each_flight_to_its_end():
     ends = []
-    thetad.compare("scenario-1", ["theta-d", "sdre"], duration=1.0, summary_only=True, timing=False,
+    thetad.compare("scenario-1", ["theta-d", "sdre"], duration_s=1.0, summary_only=True, timing=False,
                    progress=lambda t, duration: ends.append((t, duration)))
     assert ends.count((1.0, 1.0)) == 2

@@ -45,7 +45,7 @@ def test_a_seed_draws_the_parameters_a_run_flies(hover_trim):
     assert not np.allclose(drawn.f(x, u), thetad.Helicopter().f(x, u))
     np.testing.assert_array_equal(drawn.f(x, u), thetad.Helicopter(seed=7).f(x, u))
     # The run with that seed reports the same factors.
-    result = thetad.run("hover-step", "lqr", seed=7, duration=0.01, summary_only=True)
+    result = thetad.run("hover-step", "lqr", seed=7, duration_s=0.01, summary_only=True)
     reported = result.summary["parameter_factors"]
     for row in parameters:
         assert reported[row["name"]] == pytest.approx(row["factor"], rel=1e-15)

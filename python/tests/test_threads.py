@@ -14,7 +14,7 @@ def test_python_runs_while_a_flight_flies():
     counted_while_flying = 0
 
     def long_flight():
-        thetad.run("scenario-1", "theta-d", duration=30.0, summary_only=True, timing=False)
+        thetad.run("scenario-1", "theta-d", duration_s=30.0, summary_only=True, timing=False)
         flight_done.set()
 
     flying = threading.Thread(target=long_flight)

@@ -3,11 +3,13 @@ progress and Ctrl-C. Short flights: each test takes a few seconds."""
 
 import json
 import os
+import shutil
 import signal
 import subprocess
 import sys
 import textwrap
 import time
+from pathlib import Path
 
 import pandas as pd
 import pytest
@@ -16,13 +18,14 @@ import thetad
 
 
 def test_bench_returns_bench_json_with_the_table():
-    report = thetad.bench(["theta-d", "fast=lqr"], scenario="hover-to-hover", duration=0.5, samples=50, segments=1,
+    report = thetad.bench(["theta-d", "fast=lqr"], scenario="hover-to-hover", duration_s=0.5, samples=50, segments=1,
                           repetitions=1, warmup=0)
     frame = pd.DataFrame(report["controllers"])
     assert list(frame.label) == ["theta-d", "fast"]
-    assert (frame.calls >= 50).all() and (frame.median_ns > 0).all()
+    assert (frame.calls >= 50).all() and (frame.step_time_median_us > 0).all()
     assert set(frame.verdict) <= {"capable", "marginal", "not capable"}
-    assert report["recorded_with"] == "theta-d" and report["recording_diverged"] == ""
+    assert report["recorded_with"] == "theta-d" and report["recording_status"] == "completed"
+    assert report["recording_reason"] == "" and report["format_version"] == 2
     assert report["provenance"]["scenario"]["name"] == "hover-to-hover"
     assert "median us" in report["table"]
 
@@ -47,9 +50,9 @@ def test_optimal_reports_the_gap_on_j_dev_and_writes_what_the_command_writes(tmp
 
 
 def test_progress_true_draws_a_bar_per_task(capfd):
-    thetad.bench(["lqr"], scenario="hover-to-hover", duration=0.3, samples=20, segments=1, repetitions=1, warmup=0,
+    thetad.bench(["lqr"], scenario="hover-to-hover", duration_s=0.3, samples=20, segments=1, repetitions=1, warmup=0,
                  progress=True)
-    thetad.run("hover-to-hover", "lqr", duration=0.3, summary_only=True, progress=True)
+    thetad.run("hover-to-hover", "lqr", duration_s=0.3, summary_only=True, progress=True)
     err = capfd.readouterr().err
     assert "0.3" in err  # the flights' simulated seconds, on tqdm's bar or the plain lines
 
@@ -60,7 +63,7 @@ def test_optimal_refuses_a_label_the_optima_use():
 
 
 def test_plot_draws_runs_in_memory_and_a_folder(tmp_path):
-    runs = thetad.compare("scenario-1", ["theta-d", "lqr"], duration=0.5, timing=False)
+    runs = thetad.compare("scenario-1", ["theta-d", "lqr"], duration_s=0.5, timing=False)
     files = thetad.plot(runs, tmp_path / "a", formats="png", dpi=40)
     assert {os.path.basename(f) for f in files} >= {"position.png", "euler_angles.png"}
     assert all(os.path.getsize(f) > 0 for f in files)
@@ -70,6 +73,23 @@ def test_plot_draws_runs_in_memory_and_a_folder(tmp_path):
     with pytest.raises(thetad.Error, match="baseline nobody: no run of"):
         thetad.plot(runs, tmp_path / "c", baseline="nobody")
     assert not (tmp_path / "c").exists()
+
+
+FORMAT_3 = Path(__file__).resolve().parents[2] / "tests" / "fixtures" / "results" / "hover-to-hover-theta-d-format-3"
+
+
+def test_plot_draws_results_of_earlier_format_versions(tmp_path):
+    """Version 3 as an earlier thetad wrote it, and version 1 made from it (no format_version, no
+    log.columns, no scenario text): read under the current names, drawn as they were."""
+    shutil.copytree(FORMAT_3, tmp_path / "v3")
+    shutil.copytree(FORMAT_3, tmp_path / "v1")
+    result = json.loads((FORMAT_3 / "theta-d.json").read_text())
+    assert result["format_version"] == 3 and "tracking_error_m" in result
+    del result["format_version"], result["log"]["columns"], result["provenance"]["scenario"]["text"]
+    (tmp_path / "v1" / "theta-d.json").write_text(json.dumps(result))
+    for version in ("v3", "v1"):
+        files = thetad.plot(tmp_path / version, tmp_path / f"{version}-figures", formats="png", dpi=40)
+        assert {os.path.basename(f) for f in files} >= {"position.png", "summary.png", "compute_time.png"}
 
 
 CAMPAIGN = textwrap.dedent("""

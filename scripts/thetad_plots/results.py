@@ -34,6 +34,11 @@ DISPLAY_UNITS = {
     "ns": ("µs", 1e-3),
 }
 
+# The log's wall-clock column (docs/glossary.md "Compute time"); result files before format_version
+# 4 named it compute (compute_ns), which reads as this name here.
+STEP_TIME = "in_flight_step_time"
+EARLIER_COLUMNS = {"compute": STEP_TIME}
+
 
 @dataclass
 class Run:
@@ -42,22 +47,28 @@ class Run:
     data: pd.DataFrame  # the log's columns by schema name, SI units as logged
 
     @property
-    def diverged(self):
-        return self.summary.get("status") != "completed"
+    def not_completed(self):
+        """Whether the run diverged or failed (docs/glossary.md "How a run ended")."""
+        return self.status != "completed"
+
+    @property
+    def status(self):
+        return self.summary.get("status", "")
 
     @property
     def end_time(self):
         return float(self.summary["end_time_s"])
 
-    def divergence(self):
-        """'diverged at t = 12.34 s (roll |phi| = 1.1 rad exceeds 1 rad)' for a diverged run, else ''.
-        The reason is the result file's without the time it repeats, and of a failure's chain
-        ('controller failed: main-rotor speed (A4): thrust T_mr = …') the first two links."""
-        if not self.diverged:
+    def ending(self):
+        """'diverged at t = 12.34 s (roll |phi| = 1.1 rad exceeds 1 rad)' or 'failed at t = 3.00 s (…)'
+        for a run that did not complete, else ''. The reason is the result file's without the time
+        it repeats, and of a failure's chain ('controller failed: main-rotor speed (A4): thrust
+        T_mr = …') the first two links."""
+        if not self.not_completed:
             return ""
         reason = re.sub(r" at t = [-+0-9.e]+ s", "", self.summary.get("reason", "")).strip()
         reason = ": ".join(reason.split(": ")[:2])
-        return f"diverged at t = {self.end_time:.2f} s" + (f" ({reason})" if reason else "")
+        return f"{self.status} at t = {self.end_time:.2f} s" + (f" ({reason})" if reason else "")
 
 
 @dataclass
@@ -84,7 +95,7 @@ class RunSet:
 
     def longest(self):
         """The run that flew longest: the command is the same for every run of a folder, and a run
-        that diverged logged only part of it."""
+        that did not complete logged only part of it."""
         return max(self.runs, key=lambda run: len(run.data))
 
     def base_run(self):
@@ -106,10 +117,10 @@ def read_csv(run, needed):
         raise PlotError(f"{run['csv']}: {e}") from e
     if data.empty:
         raise PlotError(f"{run['csv']}: no samples")
-    # A run flown without timing has no compute column: it reads as zeros ("not measured").
+    # A run flown without timing has no step-time column: it reads as zeros ("not measured").
     for name in needed:
         if name not in data:
-            if name != "compute":
+            if name != STEP_TIME:
                 raise PlotError(f"{run['csv']}: no column {name}")
             data[name] = 0.0
     return data
@@ -127,12 +138,13 @@ def load(manifest, needed):
     """The RunSet of a manifest (its JSON as a dict), with the columns `needed`."""
     if not manifest.get("runs"):
         raise PlotError("the manifest lists no runs")
-    units = {column["name"]: column["unit"] for column in manifest["schema"]}
+    units = {EARLIER_COLUMNS.get(column["name"], column["name"]): column["unit"] for column in manifest["schema"]}
     missing = [name for name in needed if name not in units]
     if missing:
         raise PlotError("the thetad log schema has no column " + ", ".join(missing) +
                         " (thetad_plots needs it: update the figure definitions)")
-    runs = [Run(r["name"], r["summary"], read_csv(r, needed)) for r in manifest["runs"]]
+    runs = [Run(r["name"], r["summary"], read_csv({**r, "columns": [EARLIER_COLUMNS.get(c, c) for c in r["columns"]]},
+                                                  needed)) for r in manifest["runs"]]
     labels = [run.label for run in runs]
     baseline = manifest.get("baseline") or labels[0]
     if baseline not in labels:

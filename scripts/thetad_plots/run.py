@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import noise, paper, style
-from .results import PlotError, load, read_manifest
+from .results import STEP_TIME, PlotError, load, read_manifest
 from .style import plt
 
 # A log at 1 kHz has 85 000 rows: lines are drawn from at most this many points (the noise band
@@ -60,7 +60,7 @@ TIME_FIGURES = (
 )
 POSITION = ("x_p", "y_p", "z_p")
 COMMAND = ("x_c", "y_c", "z_c")
-NEEDED = sorted({"t", "compute", *POSITION, *COMMAND,
+NEEDED = sorted({"t", STEP_TIME, *POSITION, *COMMAND,
                  *(n for f in TIME_FIGURES for s in f.signals for n in (s.column, s.reference) if n)})
 SETTINGS = {"paper": "paper setting: uncertainties, gust, 5 % noise", "ideal": "ideal: no uncertainty, gust or noise",
             "custom": "own disturbance settings"}
@@ -88,8 +88,9 @@ def columns(texts):
 
 
 def run_texts(runs):
-    """A legend text per run: its label; a diverged run's also says when and why, wrapped to the column."""
-    return [textwrap.fill(f"{run.label}: {run.divergence()}", 55) if run.diverged else run.label for run in runs.runs]
+    """A legend text per run: its label; a run that did not complete also says how, when and why, wrapped to the
+    column."""
+    return [textwrap.fill(f"{run.label}: {run.ending()}", 55) if run.not_completed else run.label for run in runs.runs]
 
 
 def entries(ax, runs, extra=()):
@@ -106,10 +107,10 @@ def legend(ax, runs, extra=()):
 
 
 def mark_divergence(ax, run, t, y, look):
-    """An × where a diverged run's line ends."""
-    if run.diverged:
+    """An × where the line of a run that did not complete ends."""
+    if run.not_completed:
         ax.plot(t[-1:], y[-1:], marker="x", markersize=6, markeredgewidth=1.4, color=look["color"],
-                linestyle="none", zorder=60, label="_diverged")
+                linestyle="none", zorder=60, label="_not_completed")
 
 
 def draw_signal(ax, runs, scale, column, noisy):
@@ -230,9 +231,9 @@ def draw_trajectory_3d(runs):
         x, y, h = thin(*path)
         look = style.line(run.label, runs.labels, rank, samples=len(x))
         ax.plot(x, y, h, **look)
-        if run.diverged:
+        if run.not_completed:
             ax.plot(x[-1:], y[-1:], h[-1:], marker="x", markersize=6, color=look["color"], linestyle="none",
-                    label="_diverged")
+                    label="_not_completed")
     ax.plot(*thin(*paths[-1]), **style.REFERENCE)
     equal_limits(ax, spans)
     ax.view_init(elev=32, azim=-62)
@@ -265,14 +266,14 @@ def draw_tracking_error(runs):
 
 
 def draw_compute_time(runs):
-    """Median per window of the control() wall time with its 5–95 % band, log axis, and the
-    budget one controller period leaves."""
-    unit, factor = runs.display("compute")
+    """Median per window of the control() wall time in flight with its 5–95 % band, log axis, and
+    the budget one controller period leaves."""
+    unit, factor = runs.display(STEP_TIME)
     fig, ax = plt.subplots(figsize=style.size(style.COLUMN, 0.8))
-    measured = [run for run in runs.runs if np.any(run.data["compute"] > 0)]
+    measured = [run for run in runs.runs if np.any(run.data[STEP_TIME] > 0)]
     for run in measured:
         rank = runs.labels.index(run.label)
-        t, us = run.data["t"].to_numpy(), factor * run.data["compute"].to_numpy()
+        t, us = run.data["t"].to_numpy(), factor * run.data[STEP_TIME].to_numpy()
         width = max(1, len(us) // 400)
         count = len(us) // width
         windows = us[: count * width].reshape(count, width)
@@ -288,31 +289,32 @@ def draw_compute_time(runs):
         legend(ax, dataclasses.replace(runs, runs=measured),
                [(budget, f"budget at {1e-3 / period:g} kHz ({period * 1e6:g} µs)")])
     else:
-        ax.text(0.5, 0.5, "compute time not measured in these runs", transform=ax.transAxes, ha="center")
+        ax.text(0.5, 0.5, "in-flight step time not measured in these runs", transform=ax.transAxes, ha="center")
     ax.set_xlabel("time t (s)")
     ax.set_ylabel(f"control() wall time ({unit})")
     ax.grid(True, which="minor", linewidth=0.2)
-    title(fig, runs, "compute_time", "In-flight compute time per control step (median, 5–95 % band)")
+    title(fig, runs, "compute_time", "In-flight step time (median, 5–95 % band)")
     return fig
 
 
 def draw_summary(runs):
-    """Per controller, one row: RMS error per axis, cost J, median compute time. Bars of diverged
-    runs are hatched (their metrics stop at the divergence); the title says so only then."""
+    """Per controller, one row: RMS error per axis, cost J, in-flight median step time. Bars of runs
+    that did not complete are hatched (their metrics stop where the run ended); the title says so
+    only then."""
     labels = runs.labels
     looks = style.looks(labels)
     fig, axes = plt.subplots(1, 3, sharey=True, figsize=style.size(style.PAGE, 0.1 * len(labels) + 0.16))
     y = np.arange(len(labels))
-    rms = np.array([r.summary["tracking_error_m"]["rms"] for r in runs.runs], dtype=float)
+    rms = np.array([[r.summary[f"rms_error_{axis}_m"] for axis in "xyz"] for r in runs.runs], dtype=float)
     for k, (axis, marker) in enumerate(zip(("x", "y", "h"), ("o", "s", "^"))):
         axes[0].plot(rms[:, k], y, marker=marker, linestyle="none", color="0.2", markerfacecolor="none",
                      markersize=5, label=axis)
     axes[0].set_xlabel("RMS position error (m)")
     axes[0].legend(loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=3, handletextpad=0.1, borderaxespad=0.2)
     colours = [looks[label].colour for label in labels]
-    hatches = ["////" if r.diverged else None for r in runs.runs]
-    cost = np.array([r.summary["cost"]["J"] for r in runs.runs], dtype=float)
-    compute = np.array([1e-3 * r.summary.get("compute_time_ns", {}).get("median", 0.0) for r in runs.runs])
+    hatches = ["////" if r.not_completed else None for r in runs.runs]
+    cost = np.array([r.summary["cost"] for r in runs.runs], dtype=float)
+    compute = np.array([r.summary.get("in_flight_step_time_median_us", 0.0) for r in runs.runs])
     for ax, values, xlabel in ((axes[1], cost, "cost J, Eq. 32 (–)"), (axes[2], compute, "in-flight median step time (µs)")):
         bars = ax.barh(y, values, color=colours, hatch=hatches, edgecolor="white", linewidth=0)
         ax.bar_label(bars, fmt="%.3g", padding=2, fontsize=6.5)
@@ -328,13 +330,13 @@ def draw_summary(runs):
         axes[2].axvline(period * 1e6, color="black", linewidth=0.9, linestyle=(0, (4, 2)))
         axes[2].text(period * 1e6, len(labels) - 0.55, f"budget at {1e-3 / period:g} kHz ", fontsize=6.5, ha="right",
                      va="bottom")
-    axes[0].set_yticks(y, [f"{r.label}\n(diverged)" if r.diverged else r.label for r in runs.runs])
+    axes[0].set_yticks(y, [f"{r.label}\n({r.status})" if r.not_completed else r.label for r in runs.runs])
     axes[0].invert_yaxis()
     for ax in axes:
         ax.grid(True, axis="x", which="both", linewidth=0.3)
         ax.grid(False, axis="y")
-    diverged = [r for r in runs.runs if r.diverged]
-    what = "Summary" + (" (hatched: diverged, metrics up to the divergence)" if diverged else "")
+    endings = sorted({r.status for r in runs.runs if r.not_completed})
+    what = "Summary" + (f" (hatched: {' or '.join(endings)}, metrics up to the end of the run)" if endings else "")
     title(fig, runs, "summary", what)
     return fig
 

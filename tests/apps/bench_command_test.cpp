@@ -38,6 +38,9 @@ TEST_F(BenchCommand, TimesEachLabelledControllerOnRecordedStates) {
   EXPECT_THAT(output.out, HasSubstr("one core at the period"));
   EXPECT_THAT(output.out, HasSubstr("Host: "));
   const auto j = nlohmann::json::parse(thetad::testing::read_text(dir_ / "bench.json"));
+  EXPECT_EQ(j["format_version"], 2);
+  EXPECT_EQ(j["recording_status"], "completed");
+  EXPECT_EQ(j["recording_reason"], "");
   EXPECT_EQ(j["timed_steps_per_pass"], 200);
   // At least the passes asked for; more, up to three times as many, until the medians settle.
   const int repetitions = j["repetitions"];
@@ -51,11 +54,11 @@ TEST_F(BenchCommand, TimesEachLabelledControllerOnRecordedStates) {
   for (const auto& c : j["controllers"]) {
     EXPECT_EQ(c["calls"], 200 * repetitions);
     EXPECT_TRUE(c.contains("verdict"));
-    EXPECT_LE(c["p10_ns"].get<double>(), c["median_ns"].get<double>());
-    EXPECT_LE(c["median_ns"].get<double>(), c["p90_ns"].get<double>());
-    EXPECT_LE(c["p90_ns"].get<double>(), c["p99_ns"].get<double>());
-    EXPECT_LE(c["p99_ns"].get<double>(), c["max_ns"].get<double>());
-    EXPECT_GT(c["median_ns"].get<double>(), 0.0);
+    EXPECT_LE(c["step_time_p10_us"].get<double>(), c["step_time_median_us"].get<double>());
+    EXPECT_LE(c["step_time_median_us"].get<double>(), c["step_time_p90_us"].get<double>());
+    EXPECT_LE(c["step_time_p90_us"].get<double>(), c["step_time_p99_us"].get<double>());
+    EXPECT_LE(c["step_time_p99_us"].get<double>(), c["step_time_max_us"].get<double>());
+    EXPECT_GT(c["step_time_median_us"].get<double>(), 0.0);
   }
   EXPECT_EQ(j["controllers"][0]["label"], "paper");
   EXPECT_EQ(j["controllers"][0]["controller"], "theta-d");

@@ -34,6 +34,7 @@ TEST_F(OptimalCommand, PrintsEachGapAndWritesTheOptimumBesideTheFlights) {
   EXPECT_THAT(output.out, HasSubstr("input held 0.05 s (4 intervals)"));
   const nlohmann::json result = nlohmann::json::parse(thetad::testing::read_text(dir_ / "out" / "optimality.json"));
   EXPECT_EQ(result["format"], "thetad-optimality-3");
+  EXPECT_EQ(result["format_version"], 2);
   EXPECT_EQ(result["cost"]["name"], "J_dev");
   EXPECT_THAT(result["cost"]["weights"].get<std::string>(), HasSubstr("designed weights"));
   EXPECT_EQ(result["input_bounds"], "none");
@@ -47,6 +48,8 @@ TEST_F(OptimalCommand, PrintsEachGapAndWritesTheOptimumBesideTheFlights) {
   ASSERT_EQ(result["controllers"].size(), 2u);
   for (const auto& controller : result["controllers"]) {
     EXPECT_GE(controller["gap_percent"].get<double>(), 0.0) << controller["label"];
+    EXPECT_EQ(controller["status"], "completed") << controller["label"];
+    EXPECT_EQ(controller["end_time_s"].get<double>(), 0.2) << controller["label"];
     EXPECT_EQ(controller["optimal_cost"].get<double>(), optimal_cost);
     EXPECT_NEAR(controller["cost"].get<double>(), optimal_cost * (1.0 + controller["gap_percent"].get<double>() / 100.0),
                 1e-9 * controller["cost"].get<double>());
@@ -54,8 +57,8 @@ TEST_F(OptimalCommand, PrintsEachGapAndWritesTheOptimumBesideTheFlights) {
   // The optimum is a run of the comparison, as `thetad plot` reads one, scored as the flights are.
   const nlohmann::json optimum = nlohmann::json::parse(thetad::testing::read_text(dir_ / "out" / "optimal.json"));
   EXPECT_EQ(optimum["label"], "optimal");
-  EXPECT_EQ(optimum["cost_dev"]["J_dev"].get<double>(), optimal_cost);
-  EXPECT_EQ(optimum["cost"]["J"].get<double>(), solve["cost"].get<double>());
+  EXPECT_EQ(optimum["cost_dev"].get<double>(), optimal_cost);
+  EXPECT_EQ(optimum["cost"].get<double>(), solve["cost"].get<double>());
   EXPECT_EQ(optimum["log"]["rows"], 200);
   const nlohmann::json comparison = nlohmann::json::parse(thetad::testing::read_text(dir_ / "out" / "comparison.json"));
   EXPECT_EQ(comparison["runs"].size(), 3u);

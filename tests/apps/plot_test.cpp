@@ -10,6 +10,7 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "experiment/sha256.hpp"
 #include "tests/apps/run_thetad.hpp"
@@ -112,7 +113,7 @@ TEST_F(Plot, DrawsEveryFigureAsValidPngAndSvg) {
   }
 }
 
-// Labels name the lines, and runs flown without timing (no compute column) still draw every figure.
+// Labels name the lines, and runs flown without timing (no step-time column) still draw every figure.
 TEST_F(Plot, LabelledRunsWithoutTimingDrawEveryFigure) {
   const Output compare = thetad(dir_, "compare --scenario " + (root_ / "climb.yaml").string() +
                                           " --controllers hover=lqr,pid=example-pid --no-timing --log-every 5 --out " +
@@ -122,6 +123,31 @@ TEST_F(Plot, LabelledRunsWithoutTimingDrawEveryFigure) {
   ASSERT_EQ(output.status, 0) << output.err;
   for (const auto& figure : kFigures) EXPECT_TRUE(fs::exists(dir_ / "figures" / (figure + ".png"))) << figure;
   EXPECT_THAT(read(dir_ / "figures" / "position.svg"), HasSubstr("hover"));
+}
+
+// Results of earlier format_versions draw as they did: version 3 as an earlier thetad wrote it
+// (tests/fixtures/results; the log's wall-clock column then compute_ns) and version 1 made from it
+// (no format_version, no log.columns: the helicopter's columns with compute_ns).
+TEST_F(Plot, ResultsOfEarlierFormatVersionsDrawEveryFigure) {
+  const fs::path fixture =
+      fs::path(THETAD_SOURCE_DIR) / "tests" / "fixtures" / "results" / "hover-to-hover-theta-d-format-3";
+  fs::create_directories(dir_ / "v3");
+  fs::create_directories(dir_ / "v1");
+  for (const char* file : {"theta-d.json", "theta-d.csv"}) {
+    fs::copy_file(fixture / file, dir_ / "v3" / file);
+    fs::copy_file(fixture / file, dir_ / "v1" / file);
+  }
+  auto result = nlohmann::ordered_json::parse(read(fixture / "theta-d.json"));
+  result.erase("format_version");
+  result["log"].erase("columns");
+  result["provenance"]["scenario"].erase("text");
+  write(dir_ / "v1" / "theta-d.json", result.dump(2));
+  for (const char* version : {"v3", "v1"}) {
+    const fs::path figures = dir_ / (std::string(version) + "-figures");
+    const Output output = thetad(dir_, "plot --in " + (dir_ / version).string() + " --out " + figures.string());
+    ASSERT_EQ(output.status, 0) << version << ": " << output.err;
+    for (const auto& figure : kFigures) EXPECT_TRUE(fs::exists(figures / (figure + ".png"))) << version << " " << figure;
+  }
 }
 
 // --format (or --formats) pdf: vector files a paper can print.
@@ -157,7 +183,7 @@ TEST_F(Plot, DirectoryWithoutRunsIsAClearError) {
 
 // A log edited after its run no longer has the SHA-256 its result records.
 TEST_F(Plot, AnEditedLogIsRejected) {
-  replace_once(dir_ / "runs" / "example-pid.csv", ",compute_ns\n", "\n");
+  replace_once(dir_ / "runs" / "example-pid.csv", ",in_flight_step_time_ns\n", "\n");
   expect_rejected("example-pid.csv has another SHA-256 than the result records: the two files come from different runs");
 }
 
@@ -189,9 +215,9 @@ TEST_F(Plot, ColumnWithAnotherUnitIsRejected) {
 TEST_F(Plot, MissingColumnIsRejected) {
   fs::remove(dir_ / "runs" / "comparison.json");
   const std::string old_digest = thetad::sha256_of_file(dir_ / "runs" / "example-pid.csv");
-  replace_once(dir_ / "runs" / "example-pid.csv", ",compute_ns\n", "\n");
+  replace_once(dir_ / "runs" / "example-pid.csv", ",in_flight_step_time_ns\n", "\n");
   replace_once(dir_ / "runs" / "example-pid.json", old_digest, thetad::sha256_of_file(dir_ / "runs" / "example-pid.csv"));
-  expect_rejected("'compute_ns' is missing");
+  expect_rejected("'in_flight_step_time_ns' is missing");
 }
 
 TEST_F(Plot, MalformedSummaryJsonIsRejected) {

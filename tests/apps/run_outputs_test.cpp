@@ -123,7 +123,7 @@ TEST_F(RunOutputs, ALabelledCompareFliesOneControllerTwiceUnderItsLabels) {
   const thetad::StoredRun tuned = thetad::read_run_files(dir_ / "out" / "tuned.json");
   EXPECT_EQ(tuned.result["controller_settings"]["k"], nlohmann::ordered_json::array({0.5, 0.25}));
   EXPECT_EQ(tuned.result["settings_source"], path("tuned.yaml"));
-  EXPECT_NE(tuned.result["cost"]["J"], thetad::read_run_files(dir_ / "out" / "paper.json").result["cost"]["J"]);
+  EXPECT_NE(tuned.result["cost"], thetad::read_run_files(dir_ / "out" / "paper.json").result["cost"]);
 
   const Output twice = thetad("compare --scenario " + path("hover.yaml") + " --controllers theta-d,theta-d --out " +
                               path("twice"));
@@ -166,7 +166,7 @@ TEST_F(RunOutputs, NoTimingRerunsOfOneSeedWriteByteIdenticalFiles) {
     EXPECT_EQ(thetad::testing::read_text(dir_ / "a" / file), thetad::testing::read_text(dir_ / "b" / file)) << file;
   }
   const std::string result = thetad::testing::read_text(dir_ / "a" / "theta-d.json");
-  for (const char* wall_clock : {"host", "start_time", "wall_seconds", "compute_time_ns"})
+  for (const char* wall_clock : {"host", "start_time", "wall_time_s", "in_flight_step_time"})
     EXPECT_THAT(result, Not(HasSubstr(wall_clock))) << wall_clock;
 }
 
@@ -178,7 +178,7 @@ TEST_F(RunOutputs, SummaryOnlyWritesACompleteResultAndNoLog) {
   const thetad::StoredRun run = thetad::read_run_files(dir_ / "out" / "theta-d.json");
   EXPECT_TRUE(run.result["log"].is_null());
   EXPECT_EQ(run.result["controller_samples"], 2000);
-  EXPECT_TRUE(run.result["cost"]["J"].get<double>() > 0.0);
+  EXPECT_TRUE(run.result["cost"].get<double>() > 0.0);
   EXPECT_EQ(run.result["provenance"]["scenario"]["file"], path("hover.yaml"));
   EXPECT_EQ(run.result["provenance"]["scenario"]["sha256"].get<std::string>().size(), 64u);
 }
@@ -197,7 +197,7 @@ TEST_F(RunOutputs, AReplayFliesTheRecordedRunAgainAndSaysWhetherItAgrees) {
   EXPECT_THAT(output.err, HasSubstr("would overwrite"));
 
   std::string result = thetad::testing::read_text(dir_ / "out" / "paper.json");
-  result.insert(result.find("\"J\": ") + 5, "9");
+  result.insert(result.find("\"cost\": ") + 8, "9");
   write("edited.json", result);
   output = thetad("run --replay " + path("edited.json"));
   EXPECT_EQ(output.status, 4);
@@ -208,6 +208,16 @@ TEST_F(RunOutputs, AReplayFliesTheRecordedRunAgainAndSaysWhetherItAgrees) {
   output = thetad("run --replay " + path("not-a-result.json"));
   EXPECT_EQ(output.status, 1);
   EXPECT_THAT(output.err, HasSubstr("not a thetad run result"));
+
+  // A result of an earlier format_version (3, tests/fixtures/results) replays, and the replay is
+  // written with the current names.
+  output = thetad("run --replay " THETAD_SOURCE_DIR
+                  "/tests/fixtures/results/hover-to-hover-theta-d-format-3/theta-d.json --out " + path("again"));
+  EXPECT_EQ(output.status, 0) << output.err;
+  EXPECT_THAT(output.out, HasSubstr("agrees with the recorded run (completed)"));
+  const auto again = nlohmann::json::parse(thetad::testing::read_text(dir_ / "again" / "theta-d.json"));
+  EXPECT_EQ(again["format_version"], thetad::kRunFormatVersion);
+  EXPECT_EQ(again["cost"].get<double>(), 659.3368505702687);
 }
 
 TEST_F(RunOutputs, TheOutputFolderIsCheckedBeforeAnythingFlies) {

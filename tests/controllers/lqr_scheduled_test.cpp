@@ -250,6 +250,21 @@ TEST(LqrScheduled, TableRoundTripsThroughItsFile) {
   EXPECT_EQ(dynamic_cast<LqrScheduledController&>(*controller).table().points.size(), table.points.size());
 }
 
+// A table of format_version 1 named its version "version"; it loads as it did.
+TEST(LqrScheduled, ATableOfFormatVersion1StillLoads) {
+  const auto file = temporary_file("version_1.json");
+  save_lqr_schedule(*test_table(), file);
+  nlohmann::ordered_json document = nlohmann::ordered_json::parse(std::ifstream(file));
+  EXPECT_EQ(document["format_version"], LqrScheduleTable::kFormatVersion);
+  document.erase("format_version");
+  document["version"] = 1;
+  std::ofstream(file, std::ios::trunc) << document.dump(1);
+  const LqrScheduleTable loaded = load_lqr_schedule(file);
+  ASSERT_EQ(loaded.points.size(), test_table()->points.size());
+  for (std::size_t i = 0; i < loaded.points.size(); ++i) EXPECT_EQ(loaded.points[i].K, test_table()->points[i].K);
+  EXPECT_EQ(loaded.model_hash, test_table()->model_hash);
+}
+
 // Runs `action` and returns the thetad::Error's message ("" when nothing was thrown).
 template <class Action>
 std::string error_of(Action action) {
@@ -274,6 +289,11 @@ TEST(LqrScheduled, CorruptOrMismatchedTablesAreClearErrors) {
   EXPECT_NE(load_error().find(file.string()), std::string::npos) << load_error();
 
   nlohmann::json changed = good;
+  changed["format_version"] = LqrScheduleTable::kFormatVersion + 1;
+  write(changed.dump());
+  EXPECT_NE(load_error().find("field 'format_version': written by a newer thetad"), std::string::npos) << load_error();
+  changed = good;
+  changed.erase("format_version");
   changed["version"] = 2;
   write(changed.dump());
   EXPECT_NE(load_error().find("field 'version'"), std::string::npos) << load_error();

@@ -87,7 +87,7 @@ TEST(PlantFlight, TheLogAndTheSummaryHaveThePlantsShape) {
   std::vector<std::string> headers;
   for (const auto& column : flown.log.columns) headers.push_back(column.header());
   EXPECT_EQ(headers, (std::vector<std::string>{"t_s", "x_0", "x_1", "meas_x_0", "meas_x_1", "cmd_u_0", "app_u_0",
-                                               "compute_ns"}));
+                                               "in_flight_step_time_ns"}));
   EXPECT_EQ(flown.summary.command_rms.size(), 1);
   EXPECT_EQ(flown.summary.rms_tracking_error.size(), 0);
   EXPECT_EQ(flown.summary.saturation.magnitude.size(), 1u);

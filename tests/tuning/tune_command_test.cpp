@@ -106,7 +106,7 @@ TEST_F(TuneCommand, WritesASettingsFileThatRunAcceptsAndReusesItsRecord) {
   EXPECT_EQ(tuned["controller_settings"]["l"], tuning["l"]);
   const auto& validation = tuning["validation"][0];
   EXPECT_EQ(validation["runs"][0]["seed"], 8);
-  EXPECT_EQ(tuned["cost"]["J"], validation["runs"][0]["tuned"]["cost"]);
+  EXPECT_EQ(tuned["cost"], validation["runs"][0]["tuned"]["cost"]);
   // The report names the objective and its settings; the fit's seed is the scenario's (7), not
   // the command line's default, and the held-out draws start after it.
   EXPECT_EQ(tuning["objective"]["name"], "sigma");

@@ -63,15 +63,20 @@ def flights(tmp_path_factory):
     return manifests
 
 
-def run_set(manifest, scenario=None, diverged=None):
-    """The RunSet of a manifest, as if flown on `scenario` and with the run `diverged` (label)
-    diverged at its last sample: both edit a copy of the manifest, not the files."""
+REASONS = {"diverged": "roll |phi| = 1.2 rad exceeds 1.0472 rad at t = 2.5000 s",
+           "failed": "controller failed at t = 2.5000 s: CARE: no stabilizing solution: the pair is not stabilizable"}
+
+
+def run_set(manifest, scenario=None, not_completed=None, status="diverged"):
+    """The RunSet of a manifest, as if flown on `scenario` and with the run `not_completed` (label)
+    ended as `status` (diverged or failed) at its last sample: both edit a copy of the manifest,
+    not the files."""
     manifest = copy.deepcopy(manifest)
     for entry in manifest["runs"]:
         if scenario:
             entry["summary"]["provenance"]["scenario"]["name"] = scenario
-        if entry["name"] == diverged:
-            entry["summary"].update(status="diverged", reason="roll |phi| = 1.2 rad exceeds 1.0472 rad at t = 2.5000 s")
+        if entry["name"] == not_completed:
+            entry["summary"].update(status=status, reason=REASONS[status])
     return results.load(manifest, run.NEEDED)
 
 

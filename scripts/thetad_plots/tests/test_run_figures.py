@@ -1,5 +1,6 @@
 """The figures of a flight (thetad_plots.run), checked on their matplotlib objects."""
 
+import copy
 import re
 
 import numpy as np
@@ -7,7 +8,7 @@ import pytest
 from matplotlib.collections import PolyCollection
 
 from conftest import CONTROLLERS, run_set
-from thetad_plots import run
+from thetad_plots import results, run
 from thetad_plots.style import plt
 
 LABELS = CONTROLLERS.split(",")
@@ -126,7 +127,7 @@ def test_other_scenarios_name_no_paper_figure(figures):
 def test_divergence_is_marked_only_on_diverged_runs(flights, figures):
     for kind, fig in figures.items():
         assert "diverged" not in all_text(fig), kind
-    drawn = run.draw_all(run_set(flights["paper"], diverged="lqr"))
+    drawn = run.draw_all(run_set(flights["paper"], not_completed="lqr"))
     for kind in ("position", "euler_angles", "trajectory_3d", "tracking_error"):
         text = all_text(drawn[kind])
         assert "lqr: diverged at t = 2.50 s (roll |phi| = 1.2 rad exceeds 1.0472 rad)" in text, kind
@@ -136,6 +137,33 @@ def test_divergence_is_marked_only_on_diverged_runs(flights, figures):
                                                                                   "example-pid"]
     for fig in drawn.values():
         plt.close(fig)
+
+
+def test_a_failed_run_is_marked_failed_not_diverged(flights):
+    drawn = run.draw_all(run_set(flights["paper"], not_completed="lqr", status="failed"))
+    for kind in ("position", "euler_angles", "trajectory_3d", "tracking_error"):
+        text = all_text(drawn[kind])
+        assert "lqr: failed at t = 2.50 s (controller failed: CARE)" in text, kind
+        assert "diverged" not in text, kind
+    assert "hatched: failed" in drawn["summary"]._suptitle.get_text()
+    assert [t.get_text() for t in drawn["summary"].axes[0].get_yticklabels()] == ["theta-d", "lqr\n(failed)",
+                                                                                  "example-pid"]
+    for fig in drawn.values():
+        plt.close(fig)
+
+
+def test_a_manifest_with_the_earlier_step_time_column_reads_the_same(flights, paper):
+    """Result files before format_version 4 named the log's wall-clock column compute (compute_ns)."""
+    earlier = copy.deepcopy(flights["paper"])
+    for column in earlier["schema"]:
+        if column["name"] == results.STEP_TIME:
+            column["name"] = "compute"
+    for entry in earlier["runs"]:
+        entry["columns"] = ["compute" if c == results.STEP_TIME else c for c in entry["columns"]]
+    read = results.load(earlier, run.NEEDED)
+    for before, now in zip(read.runs, paper.runs):
+        assert np.any(now.data[results.STEP_TIME] > 0)
+        assert before.data[results.STEP_TIME].equals(now.data[results.STEP_TIME])
 
 
 def test_summary_says_hatched_only_when_a_run_diverged(figures):
