@@ -59,6 +59,8 @@ RunControls controls_of(const Json& settings, const Json& provenance) {
   controls.anti_windup = settings.contains("actuator_limits") && settings["actuator_limits"].value("anti_windup", false);
   // Files written before the disturbance scales existed flew at the paper's strengths.
   controls.uncertainty_scale = settings.value("uncertainty_scale", 1.0);
+  if (settings.contains("parameter_deviations"))
+    controls.parameter_deviations = settings["parameter_deviations"].get<std::vector<double>>();
   controls.noise_scale = noise.value("scale", 1.0);
   controls.gust_scale = settings.value("gust_scale", 1.0);
   controls.gust_onset = settings.value("gust_onset_s", 0.0);

@@ -30,6 +30,8 @@ Json settings_json(const sim::SimulationSettings& s) {
   j["duration_s"] = s.duration;
   j["parameter_uncertainty"] = s.parameter_uncertainty;
   j["uncertainty_scale"] = s.uncertainty_scale;
+  // Table 1's parameter deviations in table order, when fixed instead of drawn (a worst case).
+  if (!s.parameter_deviations.empty()) j["parameter_deviations"] = s.parameter_deviations;
   j["wind_gust"] = {{"enabled", s.wind_gust.enabled},
                     {"model", to_string(s.wind_gust.model)},
                     {"sigma_m_per_s", s.wind_gust.sigma},

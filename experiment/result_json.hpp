@@ -42,7 +42,8 @@ std::vector<LogColumn> log_columns(const std::vector<LogColumn>& schema, bool ti
 //      times are in µs; "wall_seconds" is "wall_time_s"; "settings" says "gust_scale", "gust_onset_s",
 //      "timing" and "summary_only" for "wind_gust.amplitude_scale", "wind_gust.onset_s",
 //      "measure_compute_time" and "keep_log" (negated); the log's wall-clock column is
-//      in_flight_step_time_ns (compute_ns). The 3-D rms_error_m and max_axis_error_m are new.
+//      in_flight_step_time_ns (compute_ns). The 3-D rms_error_m and max_axis_error_m are new, and
+//      "settings" holds "parameter_deviations" when Table 1's were fixed instead of drawn.
 //      Readers take earlier files through with_current_names (experiment/result_names.hpp).
 inline constexpr const char* kRunFormat = "thetad-run-1";
 inline constexpr int kRunFormatVersion = 4;

@@ -11,6 +11,9 @@
 
 #include "core/helicopter/uncertainty.hpp"
 #include "experiment/flight.hpp"
+#include "experiment/replay.hpp"
+#include "experiment/run_files.hpp"
+#include "tests/scratch_directory.hpp"
 #include "tuning/worst_case.hpp"
 
 namespace thetad::tuning {
@@ -46,6 +49,14 @@ TEST(ParameterDeviations, ReplaceTheDrawAndMustLieInTheBox) {
     EXPECT_EQ(summary.parameter_factors[i].first, row.name);
     EXPECT_EQ(summary.parameter_factors[i++].second, row.factor) << row.name;
   }
+  // The result records them and a replay flies them again.
+  const thetad::testing::ScratchDirectory scratch("thetad_worst_case_test");
+  const RunResult result = flight.fly(lqr);
+  const RunFiles files = write_run_files(result, scratch.path());
+  const Replay again = replay(files.json);
+  EXPECT_TRUE(again.differences.empty()) << again.differences.front();
+  EXPECT_EQ(again.result.summary.parameter_factors, summary.parameter_factors);
+
   controls.parameter_deviations = std::vector<double>(21, 0.0);
   controls.parameter_deviations->at(3) = 2.0;
   EXPECT_THROW(Flight(kHoverHold, controls), Error);
