@@ -102,6 +102,12 @@ def completion(per_controller, controllers, out):
     return save(figure, out, "completion.png")
 
 
+def tick_label(value):
+    """A factor's value, or a scenario's name: with several scenarios the report makes the scenario a
+    factor of its own (campaign_report.by_scenario), so one swept factor gives a 2-D envelope."""
+    return value if isinstance(value, str) else f"{value:g}"
+
+
 def envelope(per_controller, controllers, swept, out):
     names = []
     x_name, y_name = swept
@@ -118,8 +124,8 @@ def envelope(per_controller, controllers, swept, out):
             if np.isfinite(value):
                 axes.text(col, row, f"{value:.0f}", ha="center", va="center", fontsize=6,
                           color="white" if value < 60 else "black")
-        axes.set_xticks(range(len(xs)), [f"{v:g}" for v in xs])
-        axes.set_yticks(range(len(ys)), [f"{v:g}" for v in ys])
+        axes.set_xticks(range(len(xs)), [tick_label(v) for v in xs])
+        axes.set_yticks(range(len(ys)), [tick_label(v) for v in ys])
         axes.set_xlabel(x_name)
         axes.set_ylabel(y_name)
         axes.set_title(f"{controller}: completed runs [%]")

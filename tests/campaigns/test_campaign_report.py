@@ -102,3 +102,14 @@ def test_the_figures_and_the_command_line_read_a_version_4_database(old_folder, 
                              "--resamples", "200"], capture_output=True, text=True, check=False)
     assert result.returncode == 0, result.stderr
     assert (tmp_path / "cli" / "report.md").read_text() == markdown
+
+
+def test_one_swept_factor_over_two_scenarios_draws_its_envelope(old_folder, tmp_path):
+    # The scenario becomes the envelope's second axis, a name rather than a number.
+    with sqlite3.connect(old_folder / "campaign.sqlite") as db:
+        db.execute("UPDATE runs SET scenario = 'hover-to-hover' WHERE cell = 1")
+    db.close()
+    report_of = campaign_report.build_report(str(old_folder / "campaign.sqlite"), resamples=200)
+    assert report_of[2] == ["initial_offset_x_m", "scenario"]
+    figures = campaign_report.write_report(*report_of, str(tmp_path / "report"))
+    assert {"envelope_td.png", "envelope_lqr.png"} <= set(figures)
