@@ -66,7 +66,7 @@ median = {name: statistics.median(values) for name, values in times.items()}
 flight_sums = []
 for database in sorted(glob.glob(f"{out}/runs/jobs1-*/campaign.sqlite")):
     with sqlite3.connect(database) as connection:
-        flight_sums.append(connection.execute("SELECT SUM(wall_s) FROM runs").fetchone()[0])
+        flight_sums.append(connection.execute("SELECT SUM(wall_time_s) FROM runs").fetchone()[0])
 flights = statistics.median(flight_sums)
 overhead_per_run = (median["jobs1"] - flights) / draws
 print(f"theta-d campaign of scenario I, {draws} draws; medians of {len(times['jobs1'])} interleaved repeats")

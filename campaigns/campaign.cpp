@@ -1,5 +1,6 @@
 #include "campaigns/campaign.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -74,15 +75,23 @@ const Factor& known_factor(const std::string& name, const std::string& field, co
   return *factor;
 }
 
+// A factor given twice in one map, once by its old name (`duration` and `duration_s`).
+void check_once(const FactorValues& values, const Factor& factor, const std::string& field, const YAML::Mark& mark) {
+  for (const auto& [name, value] : values) {
+    if (name == factor.name) throw SettingsError(field, "factor '" + name + "' is given twice", mark);
+  }
+}
+
 // `fixed:` — factors every run shares.
 FactorValues read_fixed(const YAML::Node& node) {
   FactorValues fixed;
   if (!node) return fixed;
   if (!node.IsMap()) throw SettingsError("fixed", "expected a map from factor to value", node.Mark());
   for (const auto& entry : node) {
-    const std::string name = entry.first.Scalar(), field = "fixed." + name;
-    const Factor& factor = known_factor(name, field, entry.first.Mark());
-    fixed.emplace_back(name, factor_value(entry.second, field, factor));
+    const std::string field = "fixed." + entry.first.Scalar();
+    const Factor& factor = known_factor(entry.first.Scalar(), field, entry.first.Mark());
+    check_once(fixed, factor, field, entry.first.Mark());
+    fixed.emplace_back(factor.name, factor_value(entry.second, field, factor));
   }
   return fixed;
 }
@@ -104,9 +113,12 @@ std::vector<FactorValues> read_sweep(const YAML::Node& node, const FactorValues&
     const YAML::Node grid = node["grid"];
     if (!grid.IsMap() || grid.size() == 0) throw sweep.error("grid", "expected a map from factor to a list of values");
     for (const auto& axis : grid) {
-      const std::string name = axis.first.Scalar(), field = "sweep.grid." + name;
-      const Factor& factor = known_factor(name, field, axis.first.Mark());
+      const std::string field = "sweep.grid." + axis.first.Scalar();
+      const Factor& factor = known_factor(axis.first.Scalar(), field, axis.first.Mark());
+      const std::string name(factor.name);
       check_not_fixed(name, field, axis.first.Mark());
+      if (std::find(swept.begin(), swept.end(), name) != swept.end())
+        throw SettingsError(field, "factor '" + name + "' is given twice", axis.first.Mark());
       if (!axis.second.IsSequence() || axis.second.size() == 0)
         throw SettingsError(field, "expected a non-empty list of values", axis.second.Mark());
       if (cells.size() * axis.second.size() > kMaxCells)
@@ -135,9 +147,11 @@ std::vector<FactorValues> read_sweep(const YAML::Node& node, const FactorValues&
     FactorValues cell = fixed;
     std::vector<std::string> names;
     for (const auto& entry : list[i]) {
-      const std::string name = entry.first.Scalar(), field = item + "." + name;
-      const Factor& factor = known_factor(name, field, entry.first.Mark());
+      const std::string field = item + "." + entry.first.Scalar();
+      const Factor& factor = known_factor(entry.first.Scalar(), field, entry.first.Mark());
+      const std::string name(factor.name);
       check_not_fixed(name, field, entry.first.Mark());
+      check_once(cell, factor, field, entry.first.Mark());
       cell.emplace_back(name, factor_value(entry.second, field, factor));
       names.push_back(name);
     }

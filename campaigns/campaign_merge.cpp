@@ -21,6 +21,7 @@ void merge_shards(const std::vector<fs::path>& shards, const fs::path& out) {
   fs::path first;
   for (const fs::path& folder : shards) {
     auto store = std::make_unique<CampaignStore>(store_file(folder));
+    store->require_current_format("cannot merge it");
     const Shard shard = parse_shard(store->meta("shard"));
     if (first.empty()) {
       first = folder;

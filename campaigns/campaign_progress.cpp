@@ -27,11 +27,11 @@ std::string CampaignProgress::status() const {
   const double rate = wall > 0.0 ? static_cast<double>(flown_) / wall : 0.0;
   const std::int64_t done = stored_ + flown_;
   char text[256];
-  std::snprintf(text, sizeof text, "%s: %lld / %lld runs (%.0f %%), %.2f runs/s, ETA %s, %lld diverged", name_.c_str(),
+  std::snprintf(text, sizeof text, "%s: %lld / %lld runs (%.0f %%), %.2f runs/s, ETA %s, %lld not completed", name_.c_str(),
                 static_cast<long long>(done), static_cast<long long>(total_),
                 total_ > 0 ? 100.0 * static_cast<double>(done) / static_cast<double>(total_) : 100.0, rate,
                 rate > 0.0 ? format_duration(static_cast<double>(total_ - done) / rate).c_str() : "unknown",
-                static_cast<long long>(diverged_));
+                static_cast<long long>(not_completed_));
   return text;
 }
 
@@ -40,9 +40,9 @@ void CampaignProgress::notify() const {
   if (observer_) observer_({name_, static_cast<double>(stored_ + flown_), static_cast<double>(total_), unit});
 }
 
-void CampaignProgress::add(bool diverged) {
+void CampaignProgress::add(bool completed) {
   ++flown_;
-  if (diverged) ++diverged_;
+  if (!completed) ++not_completed_;
   notify();
   if (mode_ == Progress::Mode::quiet) return;
   const auto now = Clock::now();

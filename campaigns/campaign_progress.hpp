@@ -19,13 +19,14 @@ class CampaignProgress {
                    ProgressObserver observer = {});
 
   // Throws what the observer throws (the run is stored: a resume continues after it).
-  void add(bool diverged);
+  void add(bool completed);
   // Shows the observer the count again, so that it can stop the campaign while no run ends.
   void tick() const { notify(); }
   void finish();
 
   std::int64_t flown() const { return flown_; }
-  std::int64_t diverged() const { return diverged_; }
+  // Diverged or failed (docs/glossary.md, How a run ended).
+  std::int64_t not_completed() const { return not_completed_; }
 
  private:
   using Clock = std::chrono::steady_clock;
@@ -35,7 +36,7 @@ class CampaignProgress {
   Progress::Mode mode_;
   std::string name_;
   ProgressObserver observer_;
-  std::int64_t total_, stored_, flown_ = 0, diverged_ = 0;
+  std::int64_t total_, stored_, flown_ = 0, not_completed_ = 0;
   std::chrono::duration<double> interval_;
   Clock::time_point started_, last_shown_;
 };

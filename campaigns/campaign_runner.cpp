@@ -143,12 +143,12 @@ CampaignOutcome coordinate(const Campaign& campaign, const CampaignOptions& opti
       mpi->answer(request->rank, index);
     }
     store.write(batch);
-    for (const RunRecord& record : batch) progress.add(!record.completed());
+    for (const RunRecord& record : batch) progress.add(record.completed());
     progress.tick();
     written += batch.size();
   }
   progress.finish();
-  return {runs, progress.flown(), progress.diverged(), true};
+  return {runs, progress.flown(), progress.not_completed(), true};
 }
 
 // Any other rank: flies the indices rank 0 hands out until it says stop.
@@ -161,7 +161,7 @@ CampaignOutcome serve(const Campaign& campaign, const CampaignOptions& options, 
     while (const auto index = mpi.request(finished)) {
       finished = worker.fly(*index);
       ++outcome.flown;
-      if (!finished->completed()) ++outcome.diverged;
+      if (!finished->completed()) ++outcome.not_completed;
     }
   } catch (const std::exception& error) {
     mpi.report_error(error.what());

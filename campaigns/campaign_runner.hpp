@@ -24,10 +24,10 @@ struct CampaignOptions {
 };
 
 struct CampaignOutcome {
-  std::int64_t runs = 0;      // of the shard
-  std::int64_t flown = 0;     // by this invocation
-  std::int64_t diverged = 0;  // of those flown
-  bool writer = true;         // false on MPI ranks other than 0 (they print nothing)
+  std::int64_t runs = 0;           // of the shard
+  std::int64_t flown = 0;          // by this invocation
+  std::int64_t not_completed = 0;  // of those flown: diverged or failed (docs/glossary.md)
+  bool writer = true;              // false on MPI ranks other than 0 (they print nothing)
 };
 
 // Flies every run of the shard that `out` does not hold yet and stores it (CampaignStore). Worker

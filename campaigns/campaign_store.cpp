@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <stdexcept>
 
 #include <nlohmann/json.hpp>
 
@@ -20,7 +21,12 @@ namespace fs = std::filesystem;
 constexpr const char* kFormat = "thetad-campaign-1";
 // meta format_version (docs/glossary.md); absent in version 1. 2: J_dev (metric cost_dev) and the
 // information set (column information) of every run. 3: the factors course and actuator_limits.
-constexpr int kFormatVersion = 4;
+// 4: the factors turbulence_model, turbulence_intensity, turbulence_scale, servo_delay and
+// servo_time_constant. 5: docs/glossary.md's names: the label in column label (was controller),
+// the registered name in column controller, meta labels (was controllers), the units last in the
+// factor and metric columns (duration_s, max_axis_error_m, rms_command_T_mr_N, wall_time_s, ...).
+// The report (scripts/campaign_report.py) reads versions 2 to 5; resume and merge only 5.
+constexpr int kFormatVersion = 5;
 
 // A prepared statement, finalized with its scope.
 class Statement {
@@ -79,7 +85,7 @@ sqlite3* open_database(const fs::path& file, int flags) {
 
 // The runs table's columns after run_index: inputs, then outcome, then metric_columns().
 std::vector<std::string> run_columns() {
-  std::vector<std::string> columns{"cell", "draw", "scenario", "controller", "seed"};
+  std::vector<std::string> columns{"cell", "draw", "scenario", "label", "controller", "seed"};
   for (const Factor& factor : factors()) columns.emplace_back(factor.name);
   for (const char* name : {"status", "reason", "information", "end_time_s", "controller_samples"})
     columns.emplace_back(name);
@@ -91,15 +97,31 @@ std::vector<std::string> run_columns() {
 
 fs::path store_file(const fs::path& out) { return out / "campaign.sqlite"; }
 
-void CampaignStore::check_format(const fs::path& file) const {
+void CampaignStore::check_format(const fs::path& file) {
   if (meta("format") != kFormat) throw Error(file.string() + ": not a thetad campaign database (" + kFormat + ")");
   const std::string version = meta("format_version");
-  if (version == std::to_string(kFormatVersion)) return;
-  throw Error(file.string() + ": a campaign database of format_version " + (version.empty() ? "1" : version) +
-              ", written by another thetad (this one writes and reads version " + std::to_string(kFormatVersion) +
-              ", which adds the factors turbulence_model, turbulence_intensity, turbulence_scale, servo_delay and "
-              "servo_time_constant): run the campaign anew into another folder (the "
-              "report still reads it)");
+  version_ = 1;
+  if (!version.empty()) {
+    std::size_t end = 0;
+    try {
+      version_ = std::stoi(version, &end);
+    } catch (const std::logic_error&) {
+      end = 0;
+    }
+    if (end == 0 || end != version.size())
+      throw Error(file.string() + ": meta format_version '" + version + "' is not a whole number");
+  }
+  if (version_ > kFormatVersion)
+    throw Error(file.string() + ": written by a newer thetad (format_version " + version + "; this one reads up to " +
+                std::to_string(kFormatVersion) + ")");
+}
+
+void CampaignStore::require_current_format(const std::string& refused) const {
+  if (version_ == kFormatVersion) return;
+  throw Error(file_.string() + ": a campaign database of format_version " + std::to_string(version_) +
+              ", written by an earlier thetad (this one writes version " + std::to_string(kFormatVersion) +
+              ", with docs/glossary.md's column names): " + refused + "; `thetad campaign report` still reads it, "
+              "or run the campaign anew into another folder");
 }
 
 CampaignStore::CampaignStore(const fs::path& file, const Campaign& campaign, const Shard& shard, Open open,
@@ -112,11 +134,13 @@ CampaignStore::CampaignStore(const fs::path& file, const Campaign& campaign, con
   db_ = open_database(file, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE);
   make_durable();
   if (open == Open::create) {
+    version_ = kFormatVersion;
     create_schema(campaign, shard, provenance);
     sync_entry(file);
     return;
   }
   check_format(file);
+  require_current_format("cannot resume it");
   if (meta("campaign_sha256") != campaign.sha256)
     throw Error(file.string() + ": holds another campaign (its campaign file's SHA-256 differs from " +
                 campaign.file.string() + "'s): refusing to resume");
@@ -130,7 +154,7 @@ CampaignStore::CampaignStore(const fs::path& file) : file_(file) {
   check_format(file);
 }
 
-CampaignStore::CampaignStore(const fs::path& file, const CampaignStore& like) : file_(file) {
+CampaignStore::CampaignStore(const fs::path& file, const CampaignStore& like) : file_(file), version_(kFormatVersion) {
   if (fs::exists(file)) throw Error(file.string() + " exists: refusing to overwrite it");
   db_ = open_database(file, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE);
   make_durable();
@@ -169,8 +193,8 @@ void CampaignStore::create_tables() {
   std::string sql = "CREATE TABLE meta (key TEXT PRIMARY KEY, value TEXT NOT NULL);"
                     " CREATE TABLE runs (run_index INTEGER PRIMARY KEY";
   for (const std::string& column : run_columns()) {
-    const bool is_text = column == "scenario" || column == "controller" || column == "seed" || column == "status" ||
-                         column == "reason" || column == "information";
+    const bool is_text = column == "scenario" || column == "label" || column == "controller" || column == "seed" ||
+                         column == "status" || column == "reason" || column == "information";
     sql += ", " + column + (is_text ? " TEXT" : column == "cell" || column == "draw" || column == "controller_samples" ? " INTEGER" : " REAL");
   }
   sql += ");";
@@ -194,7 +218,7 @@ void CampaignStore::create_schema(const Campaign& campaign, const Shard& shard, 
   set_meta("run_count", std::to_string(campaign.run_count()));
   set_meta("draws", std::to_string(campaign.draws));
   set_meta("swept", nlohmann::json(campaign.swept).dump());
-  set_meta("controllers", labels.dump());
+  set_meta("labels", labels.dump());
   set_meta("scenarios", scenarios.dump());
   set_meta("provenance", provenance);
   execute("COMMIT");
@@ -238,6 +262,7 @@ void CampaignStore::write(const std::vector<RunRecord>& records) {
       insert.bind(i++, static_cast<std::int64_t>(r.cell));
       insert.bind(i++, static_cast<std::int64_t>(r.draw));
       insert.bind(i++, r.scenario);
+      insert.bind(i++, r.label);
       insert.bind(i++, r.controller);
       insert.bind(i++, std::to_string(r.seed));  // text: SQLite integers are signed 64-bit
       for (const Factor& factor : factors()) {
@@ -252,7 +277,7 @@ void CampaignStore::write(const std::vector<RunRecord>& records) {
       insert.bind(i++, r.status);
       insert.bind(i++, r.reason);
       insert.bind(i++, r.information);
-      insert.bind(i++, r.end_time);
+      insert.bind(i++, r.end_time_s);
       insert.bind(i++, r.controller_samples);
       for (double value : r.metrics) insert.bind(i++, value);
       insert.step();
@@ -266,6 +291,7 @@ void CampaignStore::write(const std::vector<RunRecord>& records) {
 }
 
 std::vector<RunRecord> CampaignStore::records() const {
+  require_current_format("cannot read its runs to merge or compare them");
   const std::vector<std::string> columns = run_columns();
   std::string sql = "SELECT run_index";
   for (const auto& column : columns) sql += ", " + column;
@@ -279,6 +305,7 @@ std::vector<RunRecord> CampaignStore::records() const {
     r.cell = static_cast<int>(select.integer(i++));
     r.draw = static_cast<int>(select.integer(i++));
     r.scenario = select.text(i++);
+    r.label = select.text(i++);
     r.controller = select.text(i++);
     r.seed = std::stoull(select.text(i++));
     for (const Factor& factor : factors()) {
@@ -288,7 +315,7 @@ std::vector<RunRecord> CampaignStore::records() const {
     r.status = select.text(i++);
     r.reason = select.text(i++);
     r.information = select.text(i++);
-    r.end_time = select.number(i++);
+    r.end_time_s = select.number(i++);
     r.controller_samples = select.integer(i++);
     // A metric a run does not have (J_dev of a plant without trims) is stored as NULL.
     for (std::size_t m = 0; m < metric_columns().size(); ++m, ++i)

@@ -44,21 +44,21 @@ const std::vector<Factor>& factors() {
        0.0, 9.99, [](double v, RunControls& c) { c.uncertainty_scale = v; }},
       {"gust_scale", "", "multiplies the whole wind, mean and gust (0 calm, 1 the paper's gust)", 0.0, kInf,
        [](double v, RunControls& c) { c.gust_scale = v; }},
-      {"gust_onset", "s", "time the wind starts blowing (calm air before)", 0.0, kInf,
+      {"gust_onset_s", "s", "time the wind starts blowing (calm air before)", 0.0, kInf,
        [](double v, RunControls& c) { c.gust_onset = v; }},
       {"noise_scale", "", "multiplies every sensor, actuator, wind-component and induced-velocity noise level", 0.0,
        kInf, [](double v, RunControls& c) { c.noise_scale = v; }},
-      {"initial_offset_x", "m", "added to the initial north position", -kInf, kInf,
+      {"initial_offset_x_m", "m", "added to the initial north position", -kInf, kInf,
        [](double v, RunControls& c) { offset_axis(c, 0, v); }},
-      {"initial_offset_y", "m", "added to the initial east position", -kInf, kInf,
+      {"initial_offset_y_m", "m", "added to the initial east position", -kInf, kInf,
        [](double v, RunControls& c) { offset_axis(c, 1, v); }},
-      {"initial_offset_z", "m", "added to the initial down position (negative: higher)", -kInf, kInf,
+      {"initial_offset_z_m", "m", "added to the initial down position (negative: higher)", -kInf, kInf,
        [](double v, RunControls& c) { offset_axis(c, 2, v); }},
-      {"initial_offset_roll", "deg", "added to the initial roll angle phi", -180.0, 180.0,
+      {"initial_offset_roll_deg", "deg", "added to the initial roll angle phi", -180.0, 180.0,
        [](double v, RunControls& c) { attitude_axis(c, 0, v); }},
-      {"initial_offset_pitch", "deg", "added to the initial pitch angle theta", -180.0, 180.0,
+      {"initial_offset_pitch_deg", "deg", "added to the initial pitch angle theta", -180.0, 180.0,
        [](double v, RunControls& c) { attitude_axis(c, 1, v); }},
-      {"initial_offset_yaw", "deg", "added to the initial yaw angle psi (heading)", -180.0, 180.0,
+      {"initial_offset_yaw_deg", "deg", "added to the initial yaw angle psi (heading)", -180.0, 180.0,
        [](double v, RunControls& c) { attitude_axis(c, 2, v); }},
       {"trajectory_speed_scale", "", "flies the same path this many times faster (the scenario's duration / s)",
        0.01, 100.0, [](double v, RunControls& c) { c.speed_scale = v; }},
@@ -79,19 +79,38 @@ const std::vector<Factor>& factors() {
        "light moderate severe"},
       {"turbulence_scale", "", "multiplies the Dryden or Gauss-Markov turbulence (0 none, 1 as specified)", 0.0, kInf,
        [](double v, RunControls& c) { c.turbulence_scale = v; }},
-      {"servo_delay", "samples", "transport delay of the command, in controller samples", 0.0,
-       sim::ServoSettings::kMaxDelaySamples, [](double v, RunControls& c) { c.servo_delay_samples = whole("servo_delay", v); }},
-      {"servo_time_constant", "s", "first-order servo lag of every input", 0.0, 10.0,
+      {"servo_delay_samples", "samples", "transport delay of the command, in controller samples", 0.0,
+       sim::ServoSettings::kMaxDelaySamples,
+       [](double v, RunControls& c) { c.servo_delay_samples = whole("servo_delay_samples", v); }},
+      {"servo_time_constant_s", "s", "first-order servo lag of every input", 0.0, 10.0,
        [](double v, RunControls& c) { c.servo_time_constant = v; }},
-      {"dt", "s", "plant (RK4) step; must divide the controller period", 0.0, kInf,
+      {"dt_s", "s", "plant (RK4) step; must divide the controller period", 0.0, kInf,
        [](double v, RunControls& c) { c.dt = v; }},
-      {"duration", "s", "flight duration (shorter than the scenario: the flight stops there)", 0.0,
+      {"duration_s", "s", "flight duration (shorter than the scenario: the flight stops there)", 0.0,
        sim::SimulationSettings::kMaxDuration, [](double v, RunControls& c) { c.duration = v; }},
   };
   return all;
 }
 
 const Factor* find_factor(std::string_view name) {
+  // The names before docs/glossary.md put the unit last (campaign files and databases of
+  // format_version 4 and earlier): a campaign file may still write them.
+  static constexpr std::pair<std::string_view, std::string_view> kOldNames[] = {
+      {"gust_onset", "gust_onset_s"},
+      {"initial_offset_x", "initial_offset_x_m"},
+      {"initial_offset_y", "initial_offset_y_m"},
+      {"initial_offset_z", "initial_offset_z_m"},
+      {"initial_offset_roll", "initial_offset_roll_deg"},
+      {"initial_offset_pitch", "initial_offset_pitch_deg"},
+      {"initial_offset_yaw", "initial_offset_yaw_deg"},
+      {"servo_delay", "servo_delay_samples"},
+      {"servo_time_constant", "servo_time_constant_s"},
+      {"dt", "dt_s"},
+      {"duration", "duration_s"},
+  };
+  for (const auto& [old_name, new_name] : kOldNames) {
+    if (name == old_name) name = new_name;
+  }
   for (const Factor& factor : factors()) {
     if (factor.name == name) return &factor;
   }

@@ -25,7 +25,8 @@ struct Factor {
 
 // Every factor, in the order the runs table lists them.
 const std::vector<Factor>& factors();
-// The factor named `name`; nullptr when there is none.
+// The factor named `name`, or by its name before docs/glossary.md (`duration` for `duration_s`);
+// nullptr when there is none.
 const Factor* find_factor(std::string_view name);
 // "uncertainty_scale, noise_scale, ..." for messages.
 std::string factor_names();

@@ -41,16 +41,16 @@ void bind_campaigns(py::module_& module) {
         result["database"] = store_file(out).string();
         result["runs"] = outcome.runs;
         result["flown"] = outcome.flown;
-        result["diverged"] = outcome.diverged;
+        result["not_completed"] = outcome.not_completed;
         return result;
       },
       py::arg("file"), py::kw_only(), py::arg("out"), py::arg("jobs") = 0, py::arg("resume") = false,
       py::arg("timing") = true, py::arg("keep_logs") = py::none(), py::arg("progress") = py::none(),
       "`thetad campaign run`: flies the campaign `file` (a file or a shipped campaign's name) into "
       "out/campaign.sqlite with `jobs` worker threads (0: every core); resume continues a database, skipping "
-      "the runs it holds. Returns {campaign, database, runs, flown, diverged}. progress(runs done, runs). Ctrl-C "
-      "raises KeyboardInterrupt within a second: the runs stored stay (resume=True continues), the flights "
-      "under way are abandoned.");
+      "the runs it holds. Returns {campaign, database, runs, flown, not_completed} (not_completed: the runs flown "
+      "that diverged or failed). progress(runs done, runs). Ctrl-C raises KeyboardInterrupt within a second: the "
+      "runs stored stay (resume=True continues), the flights under way are abandoned.");
 }
 
 }  // namespace thetad::python

@@ -1,6 +1,6 @@
 """Figures of a campaign report (matplotlib, Agg), drawn by campaign_report.py.
 
-- CDFs of RMS position error, J_dev and J per controller (completed runs of every cell);
+- CDFs of the RMS 3-D position error, J_dev and J per controller (completed runs of every cell);
 - completion rate per controller and cell with its Wilson 95 % interval;
 - for a 2-D sweep, a heat map of completion per controller: the flight envelope;
 - violins of the paired per-draw relative differences of each controller against the first.
@@ -23,7 +23,7 @@ style.apply()
 # Above this many controllers a legend goes beside the axes, where it hides no data.
 LEGEND_INSIDE = 4
 # The paired figures' columns and their names on the axes.
-PAIRED_FIGURES = (("rms_error_m", "RMS error"), ("cost_dev", "J_dev"), ("cost", "J"))
+PAIRED_FIGURES = (("rms_error_m", "RMS 3-D error"), ("cost_dev", "J_dev"), ("cost", "J"))
 
 
 def legend(axes, count):
@@ -58,7 +58,7 @@ def cdf(runs, controllers, column, label, out, name):
     figure, axes = plt.subplots(figsize=style.size(style.PAGE if many else style.COLUMN, 0.45 if many else 0.75))
     completed = runs[runs.status == "completed"]
     for controller in controllers:
-        values = np.sort(completed[completed.controller == controller][column].to_numpy())
+        values = np.sort(completed[completed.label == controller][column].to_numpy())
         if values.size:
             axes.step(values, np.arange(1, values.size + 1) / values.size, where="post",
                       **style.line(controller, controllers))
@@ -81,13 +81,13 @@ def completion(per_controller, controllers, out):
     single = len(cells) == 1
     width = 0.8 / len(controllers)
     for i, controller in enumerate(controllers):
-        rows = [r for r in per_controller if r["controller"] == controller]
+        rows = [r for r in per_controller if r["label"] == controller]
         x = np.full(len(rows), float(i)) if single else \
             np.array([r["cell"] for r in rows]) + (i - (len(controllers) - 1) / 2) * width
         rate = np.array([r["completion_rate"] for r in rows])
         # Clipped at 0: at 100 % the interval's upper end can fall an ulp below the rate.
-        low = np.maximum(rate - np.array([r["completion_wilson95"][0] for r in rows]), 0.0)
-        high = np.maximum(np.array([r["completion_wilson95"][1] for r in rows]) - rate, 0.0)
+        low = np.maximum(rate - np.array([r["completion_ci95"][0] for r in rows]), 0.0)
+        high = np.maximum(np.array([r["completion_ci95"][1] for r in rows]) - rate, 0.0)
         axes.errorbar(x, 100 * rate, yerr=100 * np.vstack([low, high]), fmt=looks[controller].marker, capsize=2,
                       markersize=3.5, label=controller, color=looks[controller].colour)
     if single:
@@ -102,11 +102,17 @@ def completion(per_controller, controllers, out):
     return save(figure, out, "completion.png")
 
 
+def tick_label(value):
+    """A factor's value, or a scenario's name: with several scenarios the report makes the scenario a
+    factor of its own (campaign_report.by_scenario), so one swept factor gives a 2-D envelope."""
+    return value if isinstance(value, str) else f"{value:g}"
+
+
 def envelope(per_controller, controllers, swept, out):
     names = []
     x_name, y_name = swept
     for controller in controllers:
-        rows = [r for r in per_controller if r["controller"] == controller]
+        rows = [r for r in per_controller if r["label"] == controller]
         xs = sorted({r["factors"][x_name] for r in rows})
         ys = sorted({r["factors"][y_name] for r in rows})
         grid = np.full((len(ys), len(xs)), np.nan)
@@ -118,8 +124,8 @@ def envelope(per_controller, controllers, swept, out):
             if np.isfinite(value):
                 axes.text(col, row, f"{value:.0f}", ha="center", va="center", fontsize=6,
                           color="white" if value < 60 else "black")
-        axes.set_xticks(range(len(xs)), [f"{v:g}" for v in xs])
-        axes.set_yticks(range(len(ys)), [f"{v:g}" for v in ys])
+        axes.set_xticks(range(len(xs)), [tick_label(v) for v in xs])
+        axes.set_yticks(range(len(ys)), [tick_label(v) for v in ys])
         axes.set_xlabel(x_name)
         axes.set_ylabel(y_name)
         axes.set_title(f"{controller}: completed runs [%]")
@@ -133,12 +139,12 @@ def violins(runs, controllers, out):
     the campaign file), one row each, one panel per figure: all pairs are in report.json."""
     completed = runs[runs.status == "completed"]
     baseline = controllers[0]
-    right = completed[completed.controller == baseline].set_index(["cell", "scenario", "draw"])
+    right = completed[completed.label == baseline].set_index(["cell", "scenario", "draw"])
     panels = []
     for column, name in PAIRED_FIGURES:
         data, labels = [], []
         for a in controllers[1:]:
-            left = completed[completed.controller == a].set_index(["cell", "scenario", "draw"])
+            left = completed[completed.label == a].set_index(["cell", "scenario", "draw"])
             both = left.join(right, how="inner", lsuffix="_a", rsuffix="_b")
             ratios = (both[column + "_a"] / both[column + "_b"] - 1.0).to_numpy() * 100
             ratios = ratios[np.isfinite(ratios)]
@@ -165,7 +171,7 @@ def violins(runs, controllers, out):
 
 def draw_figures(runs, per_controller, controllers, swept, out):
     """Draws every figure into `out`; returns their file names."""
-    names = [cdf(runs, controllers, "rms_error_m", "RMS position error [m]", out, "cdf_rms_error.png"),
+    names = [cdf(runs, controllers, "rms_error_m", "RMS 3-D position error [m]", out, "cdf_rms_error.png"),
              cdf(runs, controllers, "cost_dev", "J_dev (deviations from the trim)", out, "cdf_cost_dev.png"),
              cdf(runs, controllers, "cost", "cost J", out, "cdf_cost.png"),
              completion(per_controller, controllers, out)]

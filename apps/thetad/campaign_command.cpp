@@ -66,7 +66,7 @@ int dry_run(const Campaign& campaign, const CampaignArguments& a) {
   for (const auto& pilot : estimate.pilots)
     std::printf("  pilot %-20s %.4f s wall per simulated s\n", pilot.label.c_str(), pilot.wall_per_simulated_second);
   const int workers = a.jobs > 0 ? a.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  std::printf("estimated cost: %.2f core-hours, %s on %d worker(s) (an upper bound: diverging runs end early)\n",
+  std::printf("estimated cost: %.2f core-hours, %s on %d worker(s) (an upper bound: runs that do not complete end early)\n",
               estimate.core_seconds / 3600.0, format_duration(estimate.wall_seconds(workers)).c_str(), workers);
   return 0;
 }
@@ -85,9 +85,9 @@ int run(const CampaignArguments& a) {
   options.progress = Progress::mode_for_stderr(a.quiet);
   const CampaignOutcome outcome = run_campaign(campaign, options);
   if (outcome.writer) {
-    std::printf("%s: %lld runs in shard %s, %lld flown now (%lld diverged); %s\n", campaign.name.c_str(),
+    std::printf("%s: %lld runs in shard %s, %lld flown now (%lld not completed); %s\n", campaign.name.c_str(),
                 static_cast<long long>(outcome.runs), options.shard.text().c_str(),
-                static_cast<long long>(outcome.flown), static_cast<long long>(outcome.diverged),
+                static_cast<long long>(outcome.flown), static_cast<long long>(outcome.not_completed),
                 store_file(a.out).c_str());
   }
   return 0;

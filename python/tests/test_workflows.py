@@ -16,6 +16,10 @@ import pytest
 
 import thetad
 
+# A campaign database written before docs/glossary.md's names (tests/campaigns, shared with the report's tests).
+sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "tests", "campaigns"))
+import version4_database  # noqa: E402
+
 
 def test_bench_returns_bench_json_with_the_table():
     report = thetad.bench(["theta-d", "fast=lqr"], scenario="hover-to-hover", duration_s=0.5, samples=50, segments=1,
@@ -99,7 +103,7 @@ CAMPAIGN = textwrap.dedent("""
       - {controller: theta-d}
       - {controller: lqr}
     draws: {count: DRAWS, base_seed: 1}
-    fixed: {duration: DURATION}
+    fixed: {duration_s: DURATION}
 """)
 
 
@@ -115,19 +119,34 @@ def test_a_campaign_runs_resumes_and_reports_as_dataframes(tmp_path):
     outcome = thetad.campaign_run(file, out=str(tmp_path / "out"), jobs=2, timing=False,
                                   progress=lambda done, total: seen.append((done, total)))
     assert outcome["runs"] == 6 and outcome["flown"] == 6 and outcome["campaign"] == "python-small"
+    assert outcome["not_completed"] == 0
     assert seen[-1] == (6, 6)
     again = thetad.campaign_run(file, out=str(tmp_path / "out"), resume=True, timing=False)
     assert again["flown"] == 0
     report = thetad.campaign_report(tmp_path / "out", out=tmp_path / "report", resamples=200)
-    assert len(report.runs) == 6 and set(report.runs.controller) == {"theta-d", "lqr"}
-    assert list(report.controllers.controller) == ["theta-d", "lqr"]
+    assert len(report.runs) == 6 and set(report.runs.label) == {"theta-d", "lqr"}
+    assert set(report.runs.controller) == {"theta-d", "lqr"}
+    assert list(report.controllers.label) == ["theta-d", "lqr"]
     assert (report.controllers.completed == 3).all()
-    assert "figures.cost_dev.median" in report.controllers.columns
+    assert "metrics.cost_dev.median" in report.controllers.columns
     # Three pairs: the interval comes with a caution.
     assert all("fewer than 10" in sentence for sentence in report.paired.sentence)
     assert (tmp_path / "report" / "report.md").is_file() and report.figures
     with pytest.raises(thetad.Error, match="no campaign database"):
         thetad.campaign_report(tmp_path / "nowhere")
+
+
+def test_a_campaign_database_of_format_version_4_is_reported_under_the_new_names(tmp_path):
+    version4_database.write(tmp_path / "campaign.sqlite")
+    report = thetad.campaign_report(tmp_path, out=tmp_path / "report", resamples=200)
+    assert list(report.runs.label[:2]) == version4_database.LABELS
+    assert "initial_offset_x_m" in report.runs.columns and "max_axis_error_m" in report.runs.columns
+    first = report.controllers.iloc[0]
+    assert (first.label, first.completed) == ("td", 3)
+    assert first["metrics.rms_error_m.median"] == pytest.approx(version4_database.rms_error("td", 0, 1))
+    assert list(report.controllers["not_completed_reasons.roll |phi|"].fillna(0)) == [0, 0, 0, 1]
+    assert set(report.paired.metric) == {"rms_error_m", "max_axis_error_m", "cost_dev", "cost"}
+    assert "relative_difference_median" in report.paired.columns and report.figures
 
 
 INTERRUPTED = textwrap.dedent("""

@@ -13,10 +13,13 @@ from . import _thetad
 
 @dataclasses.dataclass
 class CampaignReport:
-    """runs: one row per stored run (the database's columns). controllers: one row per controller
-    and cell (completion with its Wilson interval, each figure's statistics over completed runs).
-    paired: the paired differences between controllers. report: report.json's content. figures: the
-    files drawn (with `out`)."""
+    """Named as docs/glossary.md names them, whatever the database's format_version. runs: one row
+    per stored run (the database's columns: label, controller, status, rms_error_m, ...).
+    controllers: one row per label and cell (label, completed, runs, completion_rate,
+    completion_ci95, metrics.<column>.{n, mean, median, p90, p99, max} over the completed runs,
+    not_completed_reasons.<kind>). paired: the paired differences between labels (a, b, metric,
+    pairs, relative_difference_median, relative_difference_ci95). report: report.json's content.
+    figures: the files drawn (with `out`)."""
     runs: pd.DataFrame
     controllers: pd.DataFrame
     paired: pd.DataFrame
@@ -42,13 +45,13 @@ def _report_module():
 
 
 def _frame(rows):
-    # Nested statistics (figures, factors) become columns "figures.cost_dev.median", ...
+    # Nested statistics (metrics, factors) become columns "metrics.cost_dev.median", ...
     return pd.json_normalize(rows) if rows else pd.DataFrame()
 
 
 def campaign_report(folder, out=None, seed=1, resamples=2000):
-    """The statistics of the campaign in `folder` (its campaign.sqlite, as campaign_run wrote it):
-    a CampaignReport. With `out`, also writes report.md, report.json and the figures there. seed and
+    """The statistics of the campaign in `folder` (its campaign.sqlite, as campaign_run wrote it, or
+    an earlier thetad: the report reads format_version 2 and later): a CampaignReport. With `out`, also writes report.md, report.json and the figures there. seed and
     resamples: the paired bootstrap's."""
     module = _report_module()
     database = os.path.join(os.fspath(folder), "campaign.sqlite")

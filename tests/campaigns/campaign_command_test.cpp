@@ -42,7 +42,7 @@ TEST_F(CampaignCommand, AKilledCampaignResumedEqualsAnUninterruptedOne) {
 scenarios: [scenario-1]
 controllers: [{controller: sdre}, {controller: lqr}]
 draws: {count: 8, base_seed: 3}
-fixed: {duration: 0.3}
+fixed: {duration_s: 0.3}
 )");
   const fs::path killed = scratch_.path() / "killed";
   const std::string command = "CI=1 " + std::string(THETAD_BINARY) + " campaign run " + file.string() + " --out " +
@@ -113,12 +113,14 @@ TEST_F(CampaignCommand, TheReportWritesTablesJsonAndFiguresOfA2dSweep) {
     EXPECT_GT(fs::file_size(folder / figure), 1000u) << figure;
   const std::string markdown = testing::read_text(folder / "report.md");
   EXPECT_THAT(markdown, HasSubstr("| uncertainty_scale=2, gust_scale=3 | td | 3/3 | 100.0 % (43.9-100.0 %) |"));
-  EXPECT_THAT(markdown, HasSubstr("lqr's RMS position error is"));
+  EXPECT_THAT(markdown, HasSubstr("lqr's RMS 3-D position error is"));
   const auto json = nlohmann::json::parse(testing::read_text(folder / "report.json"));
   EXPECT_EQ(json.at("runs_stored"), 24);
   EXPECT_EQ(json.at("controllers").size(), 8u);  // 4 cells x 2 controllers
-  EXPECT_EQ(json.at("paired").size(), 16u);      // 4 cells x 4 figures
+  EXPECT_EQ(json.at("paired").size(), 16u);      // 4 cells x 4 metrics
   EXPECT_EQ(json.at("controllers")[0].at("information"), "none");
+  EXPECT_EQ(json.at("controllers")[0].at("label"), "lqr");
+  EXPECT_EQ(json.at("paired")[0].at("metric"), "rms_error_m");
   EXPECT_EQ(json.at("statistics").at("bootstrap").at("seed"), 4);
   ASSERT_EQ(json.at("provenance").size(), 1u);  // one scenario
   EXPECT_EQ(json.at("provenance")[0].at("scenario").at("name"), "scenario-1");

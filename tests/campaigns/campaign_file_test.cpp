@@ -32,7 +32,7 @@ draws: {count: 3, base_seed: 7}
 )";
 
 TEST(CampaignFile, AGridIsEveryCombinationWithTheFirstFactorSlowest) {
-  const Campaign campaign = parse_campaign(kHead + R"(fixed: {duration: 0.5}
+  const Campaign campaign = parse_campaign(kHead + R"(fixed: {duration_s: 0.5}
 sweep:
   grid:
     uncertainty_scale: [0, 1, 2]
@@ -47,9 +47,9 @@ sweep:
   EXPECT_EQ(campaign.base_seed, 7u);
   EXPECT_EQ(campaign.swept, (std::vector<std::string>{"uncertainty_scale", "gust_scale"}));
   ASSERT_EQ(campaign.cells.size(), 6u);
-  const FactorValues second{{"duration", 0.5}, {"uncertainty_scale", 0.0}, {"gust_scale", 1.5}};
+  const FactorValues second{{"duration_s", 0.5}, {"uncertainty_scale", 0.0}, {"gust_scale", 1.5}};
   EXPECT_EQ(campaign.cells[1], second);
-  const FactorValues last{{"duration", 0.5}, {"uncertainty_scale", 2.0}, {"gust_scale", 1.5}};
+  const FactorValues last{{"duration_s", 0.5}, {"uncertainty_scale", 2.0}, {"gust_scale", 1.5}};
   EXPECT_EQ(campaign.cells[5], last);
   EXPECT_EQ(campaign.run_count(), 6 * 2 * 3);
   EXPECT_EQ(campaign.sha256.size(), 64u);
@@ -59,16 +59,51 @@ sweep:
 TEST(CampaignFile, AListGivesItsCellsAndNoSweepGivesOneCell) {
   const Campaign listed = parse_campaign(kHead + R"(sweep:
   list:
-    - {noise_scale: 0, initial_offset_x: 1}
-    - {noise_scale: 2, initial_offset_x: -1}
+    - {noise_scale: 0, initial_offset_x_m: 1}
+    - {noise_scale: 2, initial_offset_x_m: -1}
 )",
                                          kFile);
   ASSERT_EQ(listed.cells.size(), 2u);
-  EXPECT_EQ(listed.cells[1], (FactorValues{{"noise_scale", 2.0}, {"initial_offset_x", -1.0}}));
+  EXPECT_EQ(listed.cells[1], (FactorValues{{"noise_scale", 2.0}, {"initial_offset_x_m", -1.0}}));
   const Campaign single = parse_campaign(kHead, kFile);
   ASSERT_EQ(single.cells.size(), 1u);
   EXPECT_TRUE(single.cells[0].empty());
   EXPECT_EQ(single.run_count(), 6);
+}
+
+// Campaign files written before docs/glossary.md put the unit last keep their meaning: the old
+// factor keys read as the new ones, and a factor given under both names is an error.
+TEST(CampaignFile, TheFactorsOldNamesStillReadAsTheNewOnes) {
+  const Campaign old = parse_campaign(kHead + R"(fixed: {duration: 0.5, dt: 0.0005, gust_onset: 1, servo_delay: 2}
+sweep:
+  grid:
+    initial_offset_z: [0, -1]
+    initial_offset_pitch: [3]
+    servo_time_constant: [0.02]
+)",
+                                     kFile);
+  EXPECT_EQ(old.swept,
+            (std::vector<std::string>{"initial_offset_z_m", "initial_offset_pitch_deg", "servo_time_constant_s"}));
+  ASSERT_EQ(old.cells.size(), 2u);
+  EXPECT_EQ(old.cells[1], (FactorValues{{"duration_s", 0.5},
+                                        {"dt_s", 0.0005},
+                                        {"gust_onset_s", 1.0},
+                                        {"servo_delay_samples", 2.0},
+                                        {"initial_offset_z_m", -1.0},
+                                        {"initial_offset_pitch_deg", 3.0},
+                                        {"servo_time_constant_s", 0.02}}));
+  const Campaign listed = parse_campaign(kHead + "sweep:\n  list:\n    - {initial_offset_x: 1, initial_offset_roll: 2}\n"
+                                                 "    - {initial_offset_x_m: 3, initial_offset_roll_deg: 4}\n",
+                                         kFile);
+  EXPECT_EQ(listed.swept, (std::vector<std::string>{"initial_offset_x_m", "initial_offset_roll_deg"}));
+  EXPECT_EQ(listed.cells[0], (FactorValues{{"initial_offset_x_m", 1.0}, {"initial_offset_roll_deg", 2.0}}));
+  EXPECT_EQ(listed.cells[1], (FactorValues{{"initial_offset_x_m", 3.0}, {"initial_offset_roll_deg", 4.0}}));
+  EXPECT_THAT(error_of(kHead + "fixed: {duration: 1, duration_s: 2}\n"),
+              HasSubstr("field 'fixed.duration_s': factor 'duration_s' is given twice"));
+  EXPECT_THAT(error_of(kHead + "sweep: {grid: {initial_offset_yaw: [1], initial_offset_yaw_deg: [2]}}\n"),
+              HasSubstr("field 'sweep.grid.initial_offset_yaw_deg': factor 'initial_offset_yaw_deg' is given twice"));
+  EXPECT_THAT(error_of(kHead + "fixed: {dt: 0.001}\nsweep: {grid: {dt_s: [0.001]}}\n"),
+              HasSubstr("field 'sweep.grid.dt_s': factor 'dt_s' is also fixed"));
 }
 
 // base_seed is an unsigned 64-bit number like --seed: all of it is read, and what is not a whole

@@ -58,9 +58,10 @@ TEST_F(CampaignRunner, TheDatabaseIsTheSameForAnyNumberOfWorkersAndShards) {
   // Paired draws: the controllers of one draw fly the same seed, the same parameter draw.
   EXPECT_EQ(expected[0].seed, expected[1].seed);
   EXPECT_EQ(expected[0].seed, draw_seed(11, 0));
-  EXPECT_EQ(expected[0].controller, "lqr");
-  EXPECT_EQ(expected[1].controller, "td");
-  EXPECT_EQ(expected[6].factors, (FactorValues{{"uncertainty_scale", 2.0}, {"duration", 0.2}}));
+  EXPECT_EQ(expected[0].label, "lqr");
+  EXPECT_EQ(expected[1].label, "td");
+  EXPECT_EQ(expected[1].controller, "theta-d");
+  EXPECT_EQ(expected[6].factors, (FactorValues{{"uncertainty_scale", 2.0}, {"duration_s", 0.2}}));
   EXPECT_NE(expected[0].metrics[8], expected[6].metrics[8]);  // the cells differ in cost
   EXPECT_TRUE(std::isfinite(expected[0].metrics[9]));          // J_dev: the helicopter has trims
   EXPECT_EQ(expected[0].information, "none");
@@ -109,23 +110,57 @@ TEST_F(CampaignRunner, ResumeFliesOnlyWhatIsMissingAndRefusesAnotherCampaign) {
   }
 }
 
-TEST_F(CampaignRunner, ResumeRefusesADatabaseOfAnEarlierFormatVersion) {
+// What a database of an earlier format_version looks like to this thetad: its meta says so
+// (version 1 had no format_version at all).
+void set_format_version(const fs::path& database, const std::string& version) {
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(database.c_str(), &db), SQLITE_OK);
+  const std::string sql = version.empty() ? "DELETE FROM meta WHERE key = 'format_version'"
+                                          : "INSERT OR REPLACE INTO meta (key, value) VALUES ('format_version', '" +
+                                                version + "')";
+  ASSERT_EQ(sqlite3_exec(db, sql.c_str(), nullptr, nullptr, nullptr), SQLITE_OK);
+  sqlite3_close(db);
+}
+
+TEST_F(CampaignRunner, ResumeAndMergeRefuseADatabaseOfAnEarlierFormatVersionSayingWhatToDo) {
   const Campaign c = campaign();
   CampaignOptions first = options("earlier", 1);
   first.shard = Shard{1, 2};
   run_campaign(c, first);
-  // What a database of format_version 1 looks like to this thetad: no format_version in meta.
-  sqlite3* db = nullptr;
-  ASSERT_EQ(sqlite3_open(store_file(first.out).c_str(), &db), SQLITE_OK);
-  ASSERT_EQ(sqlite3_exec(db, "DELETE FROM meta WHERE key = 'format_version'", nullptr, nullptr, nullptr), SQLITE_OK);
-  sqlite3_close(db);
   first.resume = true;
+  for (const std::string version : {"", "4"}) {
+    set_format_version(store_file(first.out), version);
+    try {
+      run_campaign(c, first);
+      FAIL() << "resumed a database of an earlier format";
+    } catch (const Error& error) {
+      EXPECT_THAT(error.what(), HasSubstr(store_file(first.out).string() + ": a campaign database of format_version " +
+                                          (version.empty() ? "1" : version)));
+      EXPECT_THAT(error.what(), HasSubstr("cannot resume it"));
+      EXPECT_THAT(error.what(), HasSubstr("`thetad campaign report` still reads it"));
+      EXPECT_THAT(error.what(), HasSubstr("run the campaign anew"));
+    }
+  }
+  // The report's check opens it; merging it is refused like resuming.
+  EXPECT_EQ(CampaignStore(store_file(first.out)).format_version(), 4);
+  CampaignOptions second = options("later", 1);
+  second.shard = Shard{2, 2};
+  run_campaign(c, second);
   try {
-    run_campaign(c, first);
-    FAIL() << "resumed a database of an earlier format";
+    merge_shards({first.out, second.out}, scratch_.path() / "merged");
+    FAIL() << "merged a database of an earlier format";
   } catch (const Error& error) {
-    EXPECT_THAT(error.what(), HasSubstr("format_version 1"));
-    EXPECT_THAT(error.what(), HasSubstr("run the campaign anew"));
+    EXPECT_THAT(error.what(), HasSubstr("format_version 4"));
+    EXPECT_THAT(error.what(), HasSubstr("cannot merge it"));
+  }
+  EXPECT_FALSE(fs::exists(scratch_.path() / "merged"));
+  // A database of a newer thetad is refused by every reader, saying so.
+  set_format_version(store_file(first.out), "6");
+  try {
+    CampaignStore newer(store_file(first.out));
+    FAIL() << "opened a database of a newer format";
+  } catch (const Error& error) {
+    EXPECT_THAT(error.what(), HasSubstr("written by a newer thetad (format_version 6; this one reads up to 5)"));
   }
 }
 
@@ -166,7 +201,7 @@ std::map<std::string, std::string> kept_files(const fs::path& out) {
 TEST_F(CampaignRunner, KeptLogsAreTheFirstDrawsOfEveryCellAndEveryDivergedRunWhateverTheWorkers) {
   // Cell 1 starts rolled past the divergence limit: each of its runs diverges at once.
   const Campaign c = campaign(testing::small_campaign("kept-logs", 3, 5,
-                                                      "{list: [{initial_offset_roll: 0}, {initial_offset_roll: 90}]}"));
+                                                      "{list: [{initial_offset_roll_deg: 0}, {initial_offset_roll_deg: 90}]}"));
   CampaignOptions one = options("one", 1);
   one.keep_logs = 1;
   run_campaign(c, one);
@@ -177,7 +212,7 @@ TEST_F(CampaignRunner, KeptLogsAreTheFirstDrawsOfEveryCellAndEveryDivergedRunWha
     EXPECT_EQ(record.completed(), record.cell == 0) << record.index;
     if (record.draw == 0 || !record.completed()) {
       for (const char* extension : {".csv", ".json"})
-        expected.insert((fs::path("logs") / std::to_string(record.index) / (record.controller + extension)).string());
+        expected.insert((fs::path("logs") / std::to_string(record.index) / (record.label + extension)).string());
     }
   }
   const std::map<std::string, std::string> kept = kept_files(one.out);
@@ -185,13 +220,13 @@ TEST_F(CampaignRunner, KeptLogsAreTheFirstDrawsOfEveryCellAndEveryDivergedRunWha
   for (const auto& [name, bytes] : kept) names.insert(name);
   EXPECT_EQ(names, expected);
   // A kept log is the whole flight, and its result the row's: 0.2 s at 1 kHz.
-  const StoredRun first = read_run_files(one.out / "logs" / "0" / (records[0].controller + ".json"));
+  const StoredRun first = read_run_files(one.out / "logs" / "0" / (records[0].label + ".json"));
   EXPECT_EQ(first.result.at("controller_samples").get<std::int64_t>(), records[0].controller_samples);
   EXPECT_EQ(first.result.at("seed").get<std::uint64_t>(), records[0].seed);
-  EXPECT_EQ(std::count(kept.at("logs/0/" + records[0].controller + ".csv").begin(),
-                       kept.at("logs/0/" + records[0].controller + ".csv").end(), '\n'),
+  EXPECT_EQ(std::count(kept.at("logs/0/" + records[0].label + ".csv").begin(),
+                       kept.at("logs/0/" + records[0].label + ".csv").end(), '\n'),
             1 + 200);
-  const StoredRun diverged = read_run_files(one.out / "logs" / "7" / (records[7].controller + ".json"));
+  const StoredRun diverged = read_run_files(one.out / "logs" / "7" / (records[7].label + ".json"));
   EXPECT_EQ(diverged.result.at("status").get<std::string>(), "diverged");
   EXPECT_EQ(diverged.result.at("reason").get<std::string>(), records[7].reason);
 
@@ -219,13 +254,13 @@ TEST_F(CampaignRunner, ABadCellFailsBeforeAnythingFlies) {
 scenarios: [scenario-1]
 controllers: [{controller: lqr}]
 draws: {count: 2}
-sweep: {grid: {dt: [0.001, 0.0003]}}
+sweep: {grid: {dt_s: [0.001, 0.0003]}}
 )");
   try {
     run_campaign(c, options("bad", 1));
     FAIL() << "no error";
   } catch (const Error& error) {
-    EXPECT_THAT(error.what(), HasSubstr("sweep cell 1 (dt=0.000300)"));
+    EXPECT_THAT(error.what(), HasSubstr("sweep cell 1 (dt_s=0.000300)"));
     EXPECT_THAT(error.what(), HasSubstr("does not divide the controller period"));
   }
   EXPECT_FALSE(fs::exists(store_file(scratch_.path() / "bad")));

@@ -19,7 +19,7 @@ namespace thetad::testing {
 inline std::string small_campaign(const std::string& name, int draws, int base_seed, const std::string& sweep) {
   return "campaign: " + name + "\nscenarios: [scenario-1]\ncontrollers: [{controller: lqr}, {label: td, controller: theta-d}]\n" +
          "draws: {count: " + std::to_string(draws) + ", base_seed: " + std::to_string(base_seed) + "}\n" +
-         "fixed: {duration: 0.2}\nsweep: " + sweep + "\n";
+         "fixed: {duration_s: 0.2}\nsweep: " + sweep + "\n";
 }
 
 inline std::vector<RunRecord> stored_records(const std::filesystem::path& out) {
@@ -36,12 +36,13 @@ inline void expect_same_runs(const std::vector<RunRecord>& expected, const std::
     EXPECT_EQ(a.cell, b.cell);
     EXPECT_EQ(a.draw, b.draw);
     EXPECT_EQ(a.scenario, b.scenario);
+    EXPECT_EQ(a.label, b.label);
     EXPECT_EQ(a.controller, b.controller);
     EXPECT_EQ(a.seed, b.seed);
     EXPECT_EQ(a.factors, b.factors);
     EXPECT_EQ(a.status, b.status);
     EXPECT_EQ(a.reason, b.reason);
-    EXPECT_EQ(a.end_time, b.end_time);
+    EXPECT_EQ(a.end_time_s, b.end_time_s);
     EXPECT_EQ(a.controller_samples, b.controller_samples);
     ASSERT_EQ(a.metrics.size(), columns.size());
     ASSERT_EQ(b.metrics.size(), columns.size());

@@ -15,9 +15,9 @@ using ::testing::HasSubstr;
 
 TEST(Factors, EachSetsItsOverride) {
   RunControls controls;
-  apply({{"uncertainty_scale", 2.0}, {"gust_scale", 1.5}, {"gust_onset", 3.0}, {"noise_scale", 0.5},
-         {"initial_offset_y", -1.0}, {"initial_offset_z", 0.5}, {"trajectory_speed_scale", 1.25}, {"course", 90.0},
-         {"dt", 5e-4}, {"duration", 7.0}},
+  apply({{"uncertainty_scale", 2.0}, {"gust_scale", 1.5}, {"gust_onset_s", 3.0}, {"noise_scale", 0.5},
+         {"initial_offset_y_m", -1.0}, {"initial_offset_z_m", 0.5}, {"trajectory_speed_scale", 1.25}, {"course", 90.0},
+         {"dt_s", 5e-4}, {"duration_s", 7.0}},
         controls);
   EXPECT_EQ(controls.uncertainty_scale, 2.0);
   EXPECT_EQ(controls.gust_scale, 1.5);
@@ -34,18 +34,18 @@ TEST(Factors, EachSetsItsOverride) {
 
 TEST(Factors, TheAttitudeOffsetIsInDegreesInTheFileAndInRadiansInTheRun) {
   RunControls controls;
-  apply({{"initial_offset_roll", 10.0}, {"initial_offset_yaw", -90.0}}, controls);
+  apply({{"initial_offset_roll_deg", 10.0}, {"initial_offset_yaw_deg", -90.0}}, controls);
   ASSERT_TRUE(controls.initial_attitude_offset);
   EXPECT_DOUBLE_EQ((*controls.initial_attitude_offset)[0], std::numbers::pi / 18.0);
   EXPECT_EQ((*controls.initial_attitude_offset)[1], 0.0);
   EXPECT_DOUBLE_EQ((*controls.initial_attitude_offset)[2], -std::numbers::pi / 2.0);
-  EXPECT_EQ(find_factor("initial_offset_pitch")->unit, "deg");
+  EXPECT_EQ(find_factor("initial_offset_pitch_deg")->unit, "deg");
 }
 
 TEST(Factors, TurbulenceAndServosSetTheirFields) {
   RunControls controls;
-  apply({{"turbulence_model", 1.0}, {"turbulence_intensity", 2.0}, {"turbulence_scale", 0.5}, {"servo_delay", 3.0},
-         {"servo_time_constant", 0.02}},
+  apply({{"turbulence_model", 1.0}, {"turbulence_intensity", 2.0}, {"turbulence_scale", 0.5},
+         {"servo_delay_samples", 3.0}, {"servo_time_constant_s", 0.02}},
         controls);
   EXPECT_EQ(controls.turbulence_model, sim::TurbulenceSettings::Model::dryden);
   EXPECT_EQ(controls.turbulence_intensity, sim::TurbulenceIntensity::severe);
@@ -56,7 +56,7 @@ TEST(Factors, TurbulenceAndServosSetTheirFields) {
   thetad::apply(controls, settings);
   EXPECT_EQ(settings.turbulence.model, sim::TurbulenceSettings::Model::dryden);
   EXPECT_EQ(settings.servos.time_constant, sim::InputVector::Constant(0.02));
-  EXPECT_THROW(apply({{"servo_delay", 1.5}}, controls), Error);
+  EXPECT_THROW(apply({{"servo_delay_samples", 1.5}}, controls), Error);
 }
 
 TEST(Factors, ACampaignFileMayNameAChoice) {
@@ -87,9 +87,9 @@ TEST(Factors, ACampaignFileRefusesValuesOutsideTheirRange) {
   };
   EXPECT_THAT(error_of("sweep: {grid: {trajectory_speed_scale: [1, 0]}}\n"),
               HasSubstr("field 'sweep.grid.trajectory_speed_scale[1]': value 0 is outside [0.01, 100]"));
-  EXPECT_THAT(error_of("fixed: {initial_offset_pitch: 200}\n"),
-              HasSubstr("field 'fixed.initial_offset_pitch': value 200 is outside [-180, 180]"));
-  EXPECT_EQ(parse_campaign(head + "sweep: {grid: {trajectory_speed_scale: [0.5, 2], initial_offset_roll: [-5, 5]}}\n",
+  EXPECT_THAT(error_of("fixed: {initial_offset_pitch_deg: 200}\n"),
+              HasSubstr("field 'fixed.initial_offset_pitch_deg': value 200 is outside [-180, 180]"));
+  EXPECT_EQ(parse_campaign(head + "sweep: {grid: {trajectory_speed_scale: [0.5, 2], initial_offset_roll_deg: [-5, 5]}}\n",
                            "factors.yaml")
                 .cells.size(),
             4u);

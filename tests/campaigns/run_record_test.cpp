@@ -15,6 +15,10 @@ TEST(RunRecord, FiguresARunDoesNotHaveTravelAsNullAndReturnAsNan) {
   record.index = 7;
   record.seed = 18446744073709551615ULL;
   record.status = "completed";
+  record.label = "td";
+  record.controller = "theta-d";
+  record.end_time_s = 1.5;
+  record.controller_samples = 1500;
   record.factors = {{"course", 1.5707963267948966}};
   const double none = std::numeric_limits<double>::quiet_NaN();
   record.metrics = {0.1, 1.0 / 3.0, none, 2e-310, none};
@@ -29,6 +33,15 @@ TEST(RunRecord, FiguresARunDoesNotHaveTravelAsNullAndReturnAsNan) {
   EXPECT_TRUE(std::isnan(received.metrics[4]));
   EXPECT_EQ(received.seed, record.seed);
   EXPECT_EQ(received.factors, record.factors);
+  // docs/glossary.md's names on the wire too.
+  EXPECT_EQ(wire.at("label"), "td");
+  EXPECT_EQ(wire.at("controller"), "theta-d");
+  EXPECT_EQ(wire.at("end_time_s"), 1.5);
+  EXPECT_EQ(wire.at("controller_samples"), 1500);
+  EXPECT_EQ(received.label, record.label);
+  EXPECT_EQ(received.controller, record.controller);
+  EXPECT_EQ(received.end_time_s, record.end_time_s);
+  EXPECT_EQ(received.controller_samples, record.controller_samples);
 }
 
 }  // namespace
