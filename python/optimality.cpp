@@ -43,7 +43,8 @@ void bind_optimal(py::module_& module) {
       .def("__repr__", [](const Optimality& o) {
         std::string text = "Optimality(" + o.report["cost"]["name"].get<std::string>() + ":";
         for (const auto& c : o.report["controllers"]) {
-          text += " " + c["label"].get<std::string>() + " gap ";
+          // Appended piece by piece: GCC 12 warns (-Wrestrict, a false positive) on " " + std::string&&.
+          text.append(" ").append(c["label"].get<std::string>()).append(" gap ");
           text += c["gap_percent"].is_number() ? std::to_string(c["gap_percent"].get<double>()) + " %" : "-";
         }
         return text + (o.converged ? ")" : "; NOT converged)");
