@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <limits>
 #include <iterator>
 #include <string>
 #include <vector>
@@ -29,6 +31,31 @@ constexpr const char* kNotCompared[] = {"controller_name", "seed", "model_option
 bool compared(const std::string& key) {
   return std::find(std::begin(kNotCompared), std::end(kNotCompared), key) == std::end(kNotCompared) &&
          !key.starts_with("in_flight_step_time_");
+}
+
+// The largest relative difference between a recorded and a replayed figure (numbers, or arrays
+// and objects of them, entry by entry); infinity when they differ in anything but a number's
+// rounding (a string, a count of entries, a number against null).
+double relative_difference(const Json& recorded, const Json& replayed) {
+  if (recorded.is_number() && replayed.is_number()) {
+    const double a = recorded.get<double>(), b = replayed.get<double>();
+    if (a == b) return 0.0;
+    const double scale = std::max(std::abs(a), std::abs(b));
+    return std::isfinite(scale) ? std::abs(a - b) / scale : std::numeric_limits<double>::infinity();
+  }
+  if (recorded.type() != replayed.type() || recorded.size() != replayed.size() ||
+      (recorded.is_primitive() && recorded != replayed))
+    return std::numeric_limits<double>::infinity();
+  double largest = 0.0;
+  if (recorded.is_array()) {
+    for (std::size_t i = 0; i < recorded.size(); ++i)
+      largest = std::max(largest, relative_difference(recorded[i], replayed[i]));
+  } else if (recorded.is_object()) {
+    for (const auto& [key, value] : recorded.items())
+      largest = std::max(largest, replayed.contains(key) ? relative_difference(value, replayed.at(key))
+                                                         : std::numeric_limits<double>::infinity());
+  }
+  return largest;
 }
 
 RunControls controls_of(const Json& settings, const Json& provenance) {
@@ -122,8 +149,12 @@ Replay replay(const std::filesystem::path& result_file, Progress* progress) {
         // A figure that an earlier version did not record (docs/glossary.md; result_json.hpp).
         if (version < kRunFormatVersion) continue;
         outcome.differences.push_back(field + ": not recorded, replayed " + value.dump());
-      } else if (value != recorded.at(field)) {
-        outcome.differences.push_back(field + ": recorded " + recorded.at(field).dump() + ", replayed " + value.dump());
+      } else {
+        const double difference = relative_difference(recorded.at(field), value);
+        if (difference > kReplayTolerance)
+          outcome.differences.push_back(field + ": recorded " + recorded.at(field).dump() + ", replayed " + value.dump());
+        else
+          outcome.largest_difference = std::max(outcome.largest_difference, difference);
       }
     }
     if (recorded.contains("certificates") && !again.contains("certificates"))

@@ -83,12 +83,19 @@ int run_replay(const RunArguments& arguments) {
     std::printf("Wrote %s.\n", files.json.c_str());
   }
   if (!replayed.differences.empty()) {
-    std::printf("Replay of %s DIFFERS from the recorded run:\n", arguments.replay.c_str());
+    std::printf("Replay of %s DIFFERS from the recorded run (beyond %.0e relative):\n", arguments.replay.c_str(),
+                kReplayTolerance);
     for (const auto& difference : replayed.differences) std::printf("  %s\n", difference.c_str());
     return kExitReplayDiffers;
   }
-  std::printf("Replay of %s agrees with the recorded run (%s).\n", arguments.replay.c_str(),
-              status_text(replayed.result.summary).c_str());
+  if (replayed.largest_difference == 0.0)
+    std::printf("Replay of %s agrees with the recorded run (%s), bit for bit.\n", arguments.replay.c_str(),
+                status_text(replayed.result.summary).c_str());
+  else
+    std::printf("Replay of %s agrees with the recorded run (%s), to %.1e relative: within %.0e, the rounding that "
+                "another CPU or build of libm and LAPACK gives.\n",
+                arguments.replay.c_str(), status_text(replayed.result.summary).c_str(), replayed.largest_difference,
+                kReplayTolerance);
   return replayed.result.completed() ? kExitCompleted : kExitDiverged;
 }
 

@@ -273,10 +273,23 @@ TEST_F(FlightFiles, AReplayFliesTheSameRunFromTheResultFileAlone) {
       write_run_files(fly(flight, "tuned=theta-d:" + (dir_ / "tuned.yaml").string()), dir_ / "out");
   const Replay again = replay(files.json);
   EXPECT_TRUE(again.differences.empty()) << again.differences.front();
+  EXPECT_EQ(again.largest_difference, 0.0);  // the same build on the same machine: bit for bit
   EXPECT_EQ(again.result.spec.label, "tuned");
   EXPECT_EQ(again.result.summary.settings.seed, 5u);
   EXPECT_EQ(again.result.summary.settings.log_every, 4);
   EXPECT_FALSE(again.result.summary.settings.wind_gust.enabled);
+
+  // A figure that moved by rounding (another CPU's libm) still agrees, and the replay says by how much.
+  nlohmann::ordered_json rounded = nlohmann::ordered_json::parse(read(files.json));
+  rounded["cost"] = rounded["cost"].get<double>() * (1.0 + 3e-15);
+  std::ofstream(files.json, std::ios::trunc) << rounded.dump(2);
+  const Replay near = replay(files.json);
+  EXPECT_TRUE(near.differences.empty()) << near.differences.front();
+  EXPECT_GT(near.largest_difference, 1e-15);
+  EXPECT_LT(near.largest_difference, 1e-14);
+  rounded["cost"] = rounded["cost"].get<double>() * (1.0 + 1e-8);
+  std::ofstream(files.json, std::ios::trunc) << rounded.dump(2);
+  ASSERT_EQ(replay(files.json).differences.size(), 1u);
 
   // A result edited by hand (or another run's) no longer agrees, and says where.
   std::string text = read(files.json);
