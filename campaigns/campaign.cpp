@@ -49,23 +49,12 @@ std::vector<std::string> read_scenarios(const YAML::Node& node, const fs::path& 
 
 // One factor's value, checked against the factor's range.
 double factor_value(const YAML::Node& node, const std::string& field, const Factor& factor) {
-  double value = 0.0;
+  if (!node.IsScalar()) throw SettingsError(field, "expected a number", node.Mark());
   try {
-    value = node.as<double>();
-  } catch (const YAML::Exception&) {
-    const std::optional<double> chosen = node.IsScalar() ? choice_value(factor, node.Scalar()) : std::nullopt;
-    if (!chosen)
-      throw SettingsError(field, factor.choices.empty() ? "expected a number"
-                                                        : "expected one of " + std::string(factor.choices) + " (or its position)",
-                          node.Mark());
-    value = *chosen;
+    return factor_value(factor, node.Scalar());
+  } catch (const Error& error) {
+    throw SettingsError(field, error.what(), node.Mark());
   }
-  if (!std::isfinite(value) || value < factor.min || value > factor.max) {
-    std::ostringstream reason;
-    reason << "value " << node.Scalar() << " is outside [" << factor.min << ", " << factor.max << "]";
-    throw SettingsError(field, reason.str(), node.Mark());
-  }
-  return value;
 }
 
 const Factor& known_factor(const std::string& name, const std::string& field, const YAML::Mark& mark) {

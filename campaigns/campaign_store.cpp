@@ -25,8 +25,10 @@ constexpr const char* kFormat = "thetad-campaign-1";
 // servo_time_constant. 5: docs/glossary.md's names: the label in column label (was controller),
 // the registered name in column controller, meta labels (was controllers), the units last in the
 // factor and metric columns (duration_s, max_axis_error_m, rms_command_T_mr_N, wall_time_s, ...).
-// The report (scripts/campaign_report.py) reads versions 2 to 5; resume and merge only 5.
-constexpr int kFormatVersion = 5;
+// 6: the factor slowdown and the flight computer's metrics missed_deadlines, longest_missed_run and
+// skipped_samples (NULL without it, docs/model.md §15.7).
+// The report (scripts/campaign_report.py) reads versions 2 to 6; resume and merge only 6.
+constexpr int kFormatVersion = 6;
 
 // A prepared statement, finalized with its scope.
 class Statement {

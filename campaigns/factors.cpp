@@ -1,8 +1,10 @@
 #include "campaigns/factors.hpp"
 
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <numbers>
+#include <sstream>
 
 #include "core/error.hpp"
 
@@ -84,6 +86,9 @@ const std::vector<Factor>& factors() {
        [](double v, RunControls& c) { c.servo_delay_samples = whole("servo_delay_samples", v); }},
       {"servo_time_constant_s", "s", "first-order servo lag of every input", 0.0, 10.0,
        [](double v, RunControls& c) { c.servo_time_constant = v; }},
+      {"slowdown", "", "the flight computer this many times slower than its step times (docs/model.md §15.7; the "
+       "scenario's computer latency measured or step-time)", 0.0, sim::FlightComputerSettings::kMaxSlowdown,
+       [](double v, RunControls& c) { c.slowdown = v; }},
       {"dt_s", "s", "plant (RK4) step; must divide the controller period", 0.0, kInf,
        [](double v, RunControls& c) { c.dt = v; }},
       {"duration_s", "s", "flight duration (shorter than the scenario: the flight stops there)", 0.0,
@@ -134,6 +139,25 @@ std::optional<double> choice_value(const Factor& factor, std::string_view name) 
     rest = space == std::string_view::npos ? std::string_view() : rest.substr(space + 1);
   }
   return std::nullopt;
+}
+
+double factor_value(const Factor& factor, const std::string& text) {
+  char* end = nullptr;
+  double value = std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size()) {
+    const std::optional<double> chosen = choice_value(factor, text);
+    if (!chosen)
+      throw Error(factor.choices.empty() ? "expected a number, got '" + text + "'"
+                                         : "expected one of " + std::string(factor.choices) + " (or its position), got '" +
+                                               text + "'");
+    value = *chosen;
+  }
+  if (!std::isfinite(value) || value < factor.min || value > factor.max) {
+    std::ostringstream reason;
+    reason << "value " << text << " is outside [" << factor.min << ", " << factor.max << "]";
+    throw Error(reason.str());
+  }
+  return value;
 }
 
 void apply(const FactorValues& values, RunControls& controls) {

@@ -37,6 +37,11 @@ std::optional<double> choice_value(const Factor& factor, std::string_view name);
 // A set of factor values: one sweep cell (fixed factors included), in the order they were given.
 using FactorValues = std::vector<std::pair<std::string, double>>;
 
+// The value `text` gives `factor`: a number, or for a factor with names one of them; throws
+// thetad::Error saying what was expected, or that the value is outside the factor's range. The one
+// reading of a factor's value: campaign files, `thetad run --set` and Python's keywords.
+double factor_value(const Factor& factor, const std::string& text);
+
 // `controls` with every value of `values` applied (each by its factor's override).
 void apply(const FactorValues& values, RunControls& controls);
 

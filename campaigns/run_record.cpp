@@ -16,6 +16,8 @@ const std::vector<MetricColumn>& metric_columns() {
       {"rms_command_delta_lat_rad", false},
       {"in_flight_step_time_mean_us", true}, {"in_flight_step_time_median_us", true},
       {"in_flight_step_time_p99_us", true},  {"wall_time_s", true},
+      {"missed_deadlines", false},            {"longest_missed_run", false},
+      {"skipped_samples", false},
   };
   return columns;
 }
@@ -49,6 +51,13 @@ RunRecord make_record(const PlannedRun& run, const FactorValues& factors, const 
   const double none = std::numeric_limits<double>::quiet_NaN();
   record.metrics.insert(record.metrics.end(), {timed ? s.compute_ns_mean / 1e3 : none, timed ? s.compute_ns_median / 1e3 : none,
                                                timed ? s.compute_ns_p99 / 1e3 : none, timed ? result.wall_time_s : none});
+  // The flight computer's counts; NULL when it was not in the loop.
+  const auto count = [&s, none](std::int64_t sim::ComputerCounts::*field) {
+    return s.computer ? static_cast<double>((*s.computer).*field) : none;
+  };
+  record.metrics.insert(record.metrics.end(), {count(&sim::ComputerCounts::missed_deadlines),
+                                               count(&sim::ComputerCounts::longest_missed_run),
+                                               count(&sim::ComputerCounts::skipped_samples)});
   return record;
 }
 

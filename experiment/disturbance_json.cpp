@@ -63,11 +63,21 @@ void write_beyond_paper(const sim::SimulationSettings& s, Json& json) {
   json["servos"] = {{"channels", {"T_mr", "delta_ped", "delta_col", "delta_lon", "delta_lat"}},
                     {"time_constant_s", entries(s.servos.time_constant)},
                     {"delay_samples", s.servos.delay_samples}};
+  const sim::FlightComputerSettings& c = s.computer;
+  Json step_times = Json::object();
+  for (const auto& [label, seconds] : c.step_times) step_times[label] = seconds;
+  json["computer"] = {{"latency", sim::FlightComputerSettings::kLatencyNames[static_cast<std::size_t>(c.latency)]},
+                      {"fixed_s", c.fixed},
+                      {"slowdown", c.slowdown},
+                      {"overrun", sim::FlightComputerSettings::kOverrunNames[static_cast<std::size_t>(c.overrun)]},
+                      {"step_time_s", c.step_time},
+                      {"step_times_s", step_times},
+                      {"step_time_source", c.step_time_source}};
 }
 
 DisturbanceBlocks read_beyond_paper(const Json& json) {
   DisturbanceBlocks blocks{sim::TurbulenceSettings{}, std::vector<sim::DiscreteGust>{}, sim::SensorNoiseSettings{},
-                           sim::ServoSettings{}};
+                           sim::ServoSettings{}, sim::FlightComputerSettings{}, std::nullopt};
   if (json.contains("turbulence")) {
     const Json& t = json["turbulence"];
     blocks.turbulence->model = static_cast<sim::TurbulenceSettings::Model>(
@@ -91,6 +101,19 @@ DisturbanceBlocks read_beyond_paper(const Json& json) {
   if (json.contains("servos")) {
     blocks.servos->time_constant = vector_of<sim::InputVector>(json["servos"].at("time_constant_s"));
     blocks.servos->delay_samples = json["servos"].at("delay_samples").get<int>();
+  }
+  if (json.contains("computer")) {
+    const Json& c = json["computer"];
+    sim::FlightComputerSettings& computer = *blocks.computer;
+    computer.latency = static_cast<sim::FlightComputerSettings::Latency>(
+        index_of(sim::FlightComputerSettings::kLatencyNames, c.at("latency").get<std::string>(), "latency"));
+    computer.fixed = c.at("fixed_s").get<double>();
+    computer.slowdown = c.at("slowdown").get<double>();
+    computer.overrun = static_cast<sim::FlightComputerSettings::Overrun>(
+        index_of(sim::FlightComputerSettings::kOverrunNames, c.at("overrun").get<std::string>(), "overrun"));
+    computer.step_time = c.at("step_time_s").get<double>();
+    for (const auto& [label, seconds] : c.at("step_times_s").items()) computer.step_times.emplace_back(label, seconds.get<double>());
+    computer.step_time_source = c.at("step_time_source").get<std::string>();
   }
   return blocks;
 }

@@ -7,8 +7,8 @@
 
 namespace thetad {
 
-// The disturbances beyond the paper (docs/model.md §15) in a result's "settings": "turbulence",
-// "discrete_gusts", "sensor_noise" and "servos", field names with units.
+// What acts beyond the paper (docs/model.md §15) in a result's "settings": "turbulence",
+// "discrete_gusts", "sensor_noise", "servos" and "computer", field names with units.
 void write_beyond_paper(const sim::SimulationSettings& settings, nlohmann::ordered_json& json);
 
 // The same read back from a result's "settings", every block set: a block the file does not

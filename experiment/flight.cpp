@@ -14,6 +14,7 @@
 #include "experiment/plant_registry.hpp"
 #include "experiment/scenario_files.hpp"
 #include "experiment/sha256.hpp"
+#include "experiment/step_time_file.hpp"
 
 namespace thetad {
 
@@ -38,6 +39,9 @@ Flight::Flight(const ScenarioText& source, const RunControls& controls)
   const auto helicopter = std::make_shared<const heli::Helicopter>(heli::Parameters::nominal(), scenario_.model_options);
   helicopter_ = helicopter.get();
   plant_ = helicopter;
+  // A replay gives the computer as recorded, step times included: the bench file is not read again.
+  if (scenario_.beyond_paper.step_time_file && !controls.beyond_paper.computer)
+    load_step_times(*scenario_.beyond_paper.step_time_file, settings_.computer);
   apply(controls, settings_);
   provenance_.build = build_info();
   provenance_.plant = "helicopter";
@@ -163,7 +167,16 @@ std::optional<sim::DeviationCost> Flight::deviation_cost(std::string& why_not) c
   return sim::DeviationCost(*plant_, trims, weights, settings_.controller_period());
 }
 
+sim::SimulationSettings Flight::flown_settings(const std::string& label) const {
+  sim::SimulationSettings settings = settings_;
+  sim::FlightComputerSettings& computer = settings.computer;
+  if (computer.latency == sim::FlightComputerSettings::Latency::step_time && !computer.step_times.empty())
+    computer.step_time = computer.step_time_of(label);
+  return settings;
+}
+
 PreparedController Flight::prepare(const ControllerSpec& spec) const {
+  flown_settings(spec.label);  // fails here, before any flight, when the flight computer has no step time for it
   ControllerContext context(*plant_, initial_state_, 0.0);
   context.reference = &scenario_.trajectory;
   context.duration = settings_.duration;
@@ -191,7 +204,8 @@ RunResult Flight::fly(PreparedController& prepared, Progress* progress, const st
     if (observe) observe(t);
   };
   const std::unique_ptr<sim::Disturbances> disturbances = make_disturbances();
-  sim::RunResult flown = sim::simulate(*prepared.controller, *disturbances, scenario_.trajectory, initial_state_, settings_,
+  sim::RunResult flown = sim::simulate(*prepared.controller, *disturbances, scenario_.trajectory, initial_state_,
+                                       flown_settings(prepared.spec.label),
                                        progress || observe ? std::function<void(double)>(report) : std::function<void(double)>(),
                                        deviation ? &*deviation : nullptr);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

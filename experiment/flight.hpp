@@ -58,6 +58,10 @@ class Flight {
   // initial offsets.
   const Eigen::VectorXd& initial_state() const { return initial_state_; }
   const sim::SimulationSettings& settings() const { return settings_; }
+  // The settings a run of the controller labelled `label` flies: settings() with the flight
+  // computer's step time of that controller when its latency is the step time (docs/model.md §15.7).
+  // Throws thetad::Error when the step times have none for it.
+  sim::SimulationSettings flown_settings(const std::string& label) const;
   // The controllers' model: for the helicopter its nominal parameters, the scenario's model
   // options, no wind.
   const SdcPlant& plant() const { return *plant_; }

@@ -92,6 +92,11 @@ Json definitions(const sim::RunSummary& summary) {
   j["cost_dev"] = "J_dev = 1/2 sum_k (e' Q e + (u_cmd - u_r)' R (u_cmd - u_r)) T_c, e the true state's deviation "
                   "from the commanded motion and its trim, u_r the trim's input (docs/model.md §7.2); one Q, R for "
                   "every controller, named in cost_dev_weights";
+  if (summary.computer)
+    j["missed_deadlines"] = "computations of the flight computer whose latency exceeded the controller period "
+                           "(docs/model.md §15.7); longest_missed_run the most in a row; skipped_samples the samples "
+                           "that started no computation because it was busy; aborted_computations those stopped "
+                           "at their deadline";
   if (summary.settings.measure_compute_time)
     j["in_flight_step_time"] = "wall time of each control() call inside the flight, with the simulation around it: "
                                "noisy; thetad bench measures the per-step cost";
@@ -166,6 +171,16 @@ Json summary_json(const sim::RunSummary& summary) {
   for (std::size_t k = 0; k < summary.inputs.size(); ++k)
     j["saturated_rate_" + summary.inputs[k].name] = count_of(summary.saturation.rate, k);
   j["saturated_samples"] = summary.saturation.samples_limited;
+  if (summary.computer) {
+    const sim::ComputerCounts& c = *summary.computer;
+    j["computations"] = c.computations;
+    j["missed_deadlines"] = c.missed_deadlines;
+    j["longest_missed_run"] = c.longest_missed_run;
+    j["skipped_samples"] = c.skipped_samples;
+    j["aborted_computations"] = c.aborted;
+    j["max_latency_s"] = c.max_latency;
+    j["mean_latency_s"] = c.mean_latency;
+  }
   j["cost"] = summary.cost;
   j["cost_dev"] = summary.cost_dev ? Json(*summary.cost_dev) : Json(nullptr);
   j["cost_dev_weights"] = summary.cost_dev_weights.empty() ? Json(nullptr) : Json(summary.cost_dev_weights);

@@ -90,6 +90,13 @@ void apply(const RunControls& controls, sim::SimulationSettings& settings) {
   scale("turbulence_scale", controls.turbulence_scale, settings.turbulence.scale);
   if (controls.servo_delay_samples) settings.servos.delay_samples = *controls.servo_delay_samples;
   if (controls.servo_time_constant) settings.servos.time_constant.setConstant(*controls.servo_time_constant);
+  if (controls.slowdown) {
+    using Latency = sim::FlightComputerSettings::Latency;
+    if (settings.computer.latency != Latency::measured && settings.computer.latency != Latency::step_time)
+      throw Error("slowdown: only for a flight computer whose latency is measured or step-time (the scenario's "
+                  "simulation.computer, docs/model.md §15.7)");
+    settings.computer.slowdown = *controls.slowdown;
+  }
   if (controls.summary_only) settings.keep_log = !*controls.summary_only;
   if (controls.timing) settings.measure_compute_time = *controls.timing;
   // Every override given, the whole checked together (e.g. the log of a long flight must fit).

@@ -40,6 +40,8 @@ struct RunControls {
   std::optional<double> turbulence_scale;
   std::optional<int> servo_delay_samples;
   std::optional<double> servo_time_constant;  // s, every input
+  // The flight computer's slowdown (docs/model.md §15.7): for a latency measured or step-time.
+  std::optional<double> slowdown;
   // Added to the scenario's initial position (m, north-east-down): the flight starts off the trajectory.
   std::optional<Eigen::Vector3d> initial_offset;
   // Added to the scenario's initial Euler angles (rad: roll φ, pitch θ, yaw ψ): the flight starts tilted.

@@ -5,9 +5,24 @@
 #include <utility>
 #include <vector>
 
+#include "campaigns/factors.hpp"
 #include "python/python_controller.hpp"
 
 namespace thetad::python {
+
+namespace {
+
+// A campaign factor as a keyword (docs/campaigns.md): a number, or for a factor with names one of
+// them (turbulence_intensity="severe"), read and checked as a campaign file's value.
+void apply_factor(const Factor& factor, py::handle value, RunControls& controls) {
+  try {
+    factor.apply(factor_value(factor, py::str(value).cast<std::string>()), controls);
+  } catch (const Error& error) {
+    throw py::value_error(std::string(factor.name) + ": " + error.what());
+  }
+}
+
+}  // namespace
 
 RunControls run_controls(const py::kwargs& keywords) {
   RunControls controls;
@@ -34,10 +49,12 @@ RunControls run_controls(const py::kwargs& keywords) {
     else if (name == "induced_velocity_noise") controls.induced_velocity_noise = flag(value);
     else if (name == "actuator_limits") controls.actuator_limits = flag(value);
     else if (name == "anti_windup") controls.anti_windup = flag(value);
+    else if (const Factor* factor = find_factor(name)) apply_factor(*factor, value, controls);
     else
       throw py::type_error("unknown run control '" + name +
-                           "' (seed, duration_s, dt_s, log_every, summary_only, timing, ideal, parameter_uncertainty, "
-                           "wind_gust, measurement_noise, actuator_noise, wind_noise, induced_velocity_noise, actuator_limits, anti_windup)");
+                           "' (seed, log_every, summary_only, timing, ideal, parameter_uncertainty, wind_gust, "
+                           "measurement_noise, actuator_noise, wind_noise, induced_velocity_noise, anti_windup, and "
+                           "the campaign factors: " + factor_names() + ")");
   }
   return controls;
 }

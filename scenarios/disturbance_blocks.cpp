@@ -100,6 +100,53 @@ sim::ServoSettings read_servos(const Settings& block) {
   return servos;
 }
 
+// The flight computer (docs/model.md §15.7); its step times from `step_times:` here or a bench file
+// (into `file`, read later).
+sim::FlightComputerSettings read_computer(const Settings& block, const std::filesystem::path& folder,
+                                          std::optional<StepTimeFile>& file) {
+  using Computer = sim::FlightComputerSettings;
+  block.allow_only({"latency", "fixed", "slowdown", "overrun", "bench", "statistic", "step_times"});
+  Computer computer;
+  const auto& latencies = Computer::kLatencyNames;
+  const std::string latency = block.choice("latency", "none", {latencies[0], latencies[1], latencies[2], latencies[3]});
+  computer.latency = static_cast<Computer::Latency>(
+      std::find(latencies.begin(), latencies.end(), latency) - latencies.begin());
+  const bool fixed = computer.latency == Computer::Latency::fixed;
+  const bool scaled = computer.latency == Computer::Latency::measured || computer.latency == Computer::Latency::step_time;
+  const bool step_time = computer.latency == Computer::Latency::step_time;
+  if (fixed && !block.has("fixed")) throw block.error("fixed", "missing: the fixed latency (s)");
+  if (!fixed && block.has("fixed")) throw block.error("fixed", "only with latency: fixed");
+  if (!scaled && block.has("slowdown")) throw block.error("slowdown", "only with latency: measured or step-time");
+  for (const char* key : {"bench", "statistic", "step_times"})
+    if (!step_time && block.has(key)) throw block.error(key, "only with latency: step-time");
+  computer.fixed = block.number("fixed", 0.0, 0.0, Computer::kMaxLatency);
+  computer.slowdown = block.number("slowdown", 1.0, 0.0, Computer::kMaxSlowdown);
+  if (!(computer.slowdown > 0.0)) throw block.error("slowdown", "must be > 0");
+  const auto& overruns = Computer::kOverrunNames;
+  computer.overrun = block.choice("overrun", overruns[0], {overruns[0], overruns[1]}) == overruns[0]
+                         ? Computer::Overrun::skip_next
+                         : Computer::Overrun::abort;
+  if (step_time) {
+    if (block.has("bench") == block.has("step_times"))
+      throw block.error("bench", "give the step times as a thetad bench file (bench:) or by label (step_times:), one of them");
+    if (block.has("bench")) {
+      file = StepTimeFile{folder / block.string("bench", ""), block.choice("statistic", "median", {"median", "p90", "p99", "max"})};
+    } else {
+      if (block.has("statistic")) throw block.error("statistic", "only with bench:");
+      const YAML::Node times = block.node()["step_times"];
+      if (!times.IsMap() || times.size() == 0)
+        throw block.error("step_times", "expected a map of controller labels to step times (s)");
+      const Settings entries = block.block("step_times");
+      for (const auto& entry : times) {
+        const std::string label = entry.first.as<std::string>();
+        computer.step_times.emplace_back(label, entries.number(label, 0.0, 0.0, Computer::kMaxLatency));
+      }
+      computer.step_time_source = "the scenario's simulation.computer.step_times";
+    }
+  }
+  return computer;
+}
+
 }  // namespace
 
 void DisturbanceBlocks::apply(sim::SimulationSettings& settings) const {
@@ -107,10 +154,12 @@ void DisturbanceBlocks::apply(sim::SimulationSettings& settings) const {
   if (discrete_gusts) settings.discrete_gusts = *discrete_gusts;
   if (sensor_noise) settings.sensor_noise = *sensor_noise;
   if (servos) settings.servos = *servos;
+  if (computer) settings.computer = *computer;
 }
 
 DisturbanceBlocks read_disturbance_blocks(const YAML::Node& wind_node, const YAML::Node& sensor_noise,
-                                          const YAML::Node& servos) {
+                                          const YAML::Node& servos, const YAML::Node& computer,
+                                          const std::filesystem::path& folder) {
   DisturbanceBlocks blocks;
   if (wind_node.IsDefined()) {
     const Settings wind(wind_node, "simulation.wind");
@@ -120,6 +169,8 @@ DisturbanceBlocks read_disturbance_blocks(const YAML::Node& wind_node, const YAM
   }
   if (sensor_noise.IsDefined()) blocks.sensor_noise = read_sensor_noise(Settings(sensor_noise, "simulation.sensor_noise"));
   if (servos.IsDefined()) blocks.servos = read_servos(Settings(servos, "simulation.servos"));
+  if (computer.IsDefined())
+    blocks.computer = read_computer(Settings(computer, "simulation.computer"), folder, blocks.step_time_file);
   return blocks;
 }
 

@@ -1,6 +1,8 @@
 #pragma once
 
+#include <filesystem>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include <yaml-cpp/yaml.h>
@@ -9,22 +11,35 @@
 
 namespace thetad {
 
-// The blocks of a scenario's `simulation:` for the disturbances beyond the paper (docs/model.md
-// §15; docs/scenarios.md shows them): `wind:`, `sensor_noise:` and `servos:`. An absent block is
-// nullopt (thetad's default: off); every field of a present block is checked, and an error is a
-// SettingsError naming the field and the reason.
+// A thetad bench file whose step times set the flight computer's latency (docs/model.md §15.7),
+// and which of its statistics to take: median, p90, p99 or max.
+struct StepTimeFile {
+  std::filesystem::path file;  // as the scenario names it, resolved against the scenario's folder
+  std::string statistic = "median";
+};
+
+// The blocks of a scenario's `simulation:` for what acts beyond the paper (docs/model.md §15;
+// docs/scenarios.md shows them): the disturbances `wind:`, `sensor_noise:` and `servos:`, and the
+// flight computer `computer:`. An absent block is nullopt (thetad's default: off); every field of a
+// present block is checked, and an error is a SettingsError naming the field and the reason.
 struct DisturbanceBlocks {
   std::optional<sim::TurbulenceSettings> turbulence;
   std::optional<std::vector<sim::DiscreteGust>> discrete_gusts;
   std::optional<sim::SensorNoiseSettings> sensor_noise;
   std::optional<sim::ServoSettings> servos;
+  std::optional<sim::FlightComputerSettings> computer;
+  // The computer's step times still to be read from a bench file (the experiment layer reads it,
+  // with its digest: load_step_times); none when they are given in the block or not needed.
+  std::optional<StepTimeFile> step_time_file;
 
   // `settings` with every block given here in place of its own.
   void apply(sim::SimulationSettings& settings) const;
 };
 
-// The three blocks' nodes (an undefined node for an absent block).
+// The four blocks' nodes (an undefined node for an absent block); `folder`: the scenario file's,
+// against which a bench file's relative name is resolved.
 DisturbanceBlocks read_disturbance_blocks(const YAML::Node& wind, const YAML::Node& sensor_noise,
-                                          const YAML::Node& servos);
+                                          const YAML::Node& servos, const YAML::Node& computer,
+                                          const std::filesystem::path& folder);
 
 }  // namespace thetad

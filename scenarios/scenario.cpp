@@ -219,7 +219,7 @@ void read_simulation(const YAML::Node& root, Scenario& scenario) {
   const Settings simulation(node, "simulation");
   simulation.allow_only({"duration", "dt", "controller_period_steps", "log_every", "summary_only", "timing", "seed",
                          "actuator_limits", "anti_windup", "disturbances", "model", "wind", "sensor_noise",
-                         "servos"});
+                         "servos", "computer"});
   if (simulation.has("duration")) scenario.simulation_duration = positive(simulation, "duration");
   if (simulation.has("dt")) scenario.dt = positive(simulation, "dt");
   if (simulation.has("log_every")) scenario.log_every = simulation.integer("log_every", 1, 1);
@@ -264,7 +264,8 @@ void read_simulation(const YAML::Node& root, Scenario& scenario) {
   scenario.parameter_deviations = read_parameter_deviations(disturbances);
 
   scenario.beyond_paper =
-      read_disturbance_blocks(child(node, "wind"), child(node, "sensor_noise"), child(node, "servos"));
+      read_disturbance_blocks(child(node, "wind"), child(node, "sensor_noise"), child(node, "servos"),
+                              child(node, "computer"), std::filesystem::path(scenario.source).parent_path());
   scenario.model_options = read_model(child(node, "model"), scenario.model_preset);
   check_flight_length(Settings(root), simulation, scenario);
 }
@@ -305,6 +306,8 @@ Scenario Scenario::turned(double course) const {
   result.trajectory = trajectory.turned(course);
   return result;
 }
+
+sim::SimulationSettings Scenario::simulation_settings() const { return simulation_settings(sim::SimulationSettings()); }
 
 sim::SimulationSettings Scenario::simulation_settings(sim::SimulationSettings base) const {
   base.duration = simulation_duration.value_or(duration);

@@ -66,8 +66,11 @@ struct Scenario {
   // (heading included) as written. Throws thetad::Error unless the angle is finite.
   Scenario turned(double course) const;
 
-  // `base` with this scenario's duration and overrides applied.
-  sim::SimulationSettings simulation_settings(sim::SimulationSettings base = {}) const;
+  // `base` (default: SimulationSettings's defaults) with this scenario's duration and overrides
+  // applied. Two overloads, not a default argument: GCC 12 warns falsely (-Wmaybe-uninitialized)
+  // on the strings of a defaulted temporary's destruction where the caller inlines it.
+  sim::SimulationSettings simulation_settings() const;
+  sim::SimulationSettings simulation_settings(sim::SimulationSettings base) const;
 };
 
 // Reads a scenario file. Every problem throws thetad::Error with one line that names the file,

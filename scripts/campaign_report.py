@@ -28,8 +28,9 @@ FORMAT = "thetad-campaign-1"
 # The versions this report reads: 2 added J_dev (cost_dev) and the information set of each run, 3 the
 # factors course and actuator_limits, 4 turbulence_model, turbulence_intensity, turbulence_scale,
 # servo_delay and servo_time_constant (columns it reads only when they were swept), 5 docs/glossary.md's
-# names (OLD_NAMES, and the registered name in column controller).
-FORMAT_VERSIONS = ("2", "3", "4", "5")
+# names (OLD_NAMES, and the registered name in column controller), 6 the factor slowdown and the flight
+# computer's missed_deadlines, longest_missed_run and skipped_samples.
+FORMAT_VERSIONS = ("2", "3", "4", "5", "6")
 # The columns of versions 2 to 4 that version 5 renamed, to their docs/glossary.md names.
 OLD_NAMES = {
     "controller": "label",

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "campaigns/factors.hpp"
 #include "controllers/registry.hpp"
 #include "core/error.hpp"
 #include "core/sim/seed.hpp"
@@ -55,6 +56,12 @@ void print_summary(const RunResult& result, const Flight& flight, const RunFiles
     std::printf("In-flight step time (includes the simulation's noise; thetad bench measures the per-step cost): "
                 "median %.1f us, p99 %.1f us.\n",
                 s.compute_ns_median * 1e-3, s.compute_ns_p99 * 1e-3);
+  if (s.computer)
+    std::printf("Flight computer (docs/model.md §15.7): %lld computations, %lld missed deadlines (at most %lld in a "
+                "row), %lld samples skipped, %lld aborted; latency mean %.3g ms, max %.3g ms.\n",
+                static_cast<long long>(s.computer->computations), static_cast<long long>(s.computer->missed_deadlines),
+                static_cast<long long>(s.computer->longest_missed_run), static_cast<long long>(s.computer->skipped_samples),
+                static_cast<long long>(s.computer->aborted), s.computer->mean_latency * 1e3, s.computer->max_latency * 1e3);
   for (const auto& [counter, count] : s.controller_counters) std::printf("Controller counter %s: %g.\n", counter.c_str(), count);
   for (const CertificateWorst& worst : s.certificates)
     std::printf("Certificate %s: %s %.4g at t = %.4g s.\n", worst.certificate.column.header().c_str(),
@@ -125,6 +132,24 @@ std::uint64_t parse_seed(const std::string& text, const std::string& option) {
   return *seed;
 }
 
+namespace {
+
+// `--set NAME=VALUE`: the factor's override of `controls`, its value read as a campaign file's.
+void set_factor(const std::string& item, RunControls& controls) {
+  const std::size_t equals = item.find('=');
+  const std::string name = item.substr(0, equals);
+  const Factor* factor = find_factor(name);
+  if (equals == std::string::npos || factor == nullptr)
+    throw CLI::ValidationError("--set", "'" + item + "': expected NAME=VALUE with NAME one of " + factor_names());
+  try {
+    factor->apply(factor_value(*factor, item.substr(equals + 1)), controls);
+  } catch (const Error& error) {
+    throw CLI::ValidationError("--set", name + ": " + error.what());
+  }
+}
+
+}  // namespace
+
 void add_flight_options(CLI::App& command, FlightOptions& options, bool scenario_required, bool writes_runs) {
   auto* scenario = command.add_option("--scenario", options.scenario,
                                       "Scenario file (YAML, see docs/scenarios.md) or the name of a shipped one "
@@ -148,6 +173,13 @@ void add_flight_options(CLI::App& command, FlightOptions& options, bool scenario
           "With the actuator limits, hold the position-error integrals at samples where a limit acts: on|off "
           "(default: the scenario's, else on; docs/model.md §12)")
       ->check(CLI::IsMember({"on", "off"}));
+  command.add_option_function<std::vector<std::string>>(
+      "--set",
+      [&options](const std::vector<std::string>& items) {
+        for (const std::string& item : items) set_factor(item, options.controls);
+      },
+      "A campaign factor for this flight, NAME=VALUE (repeatable; docs/campaigns.md lists them): "
+      "uncertainty_scale=2, turbulence_model=dryden, turbulence_intensity=severe, servo_delay_samples=2, slowdown=30, ...");
   command.add_option_function<double>(
       "--duration", [&options](double value) { options.controls.duration = value; },
       "Simulated seconds to fly (default: the scenario's)");

@@ -25,7 +25,7 @@ void RunMetrics::add(const Eigen::VectorXd& error, const Eigen::VectorXd& v_trac
   error_square_sum_ += error.cwiseAbs2();
   max_error_ = max_error_.cwiseMax(error.cwiseAbs());
   command_square_sum_ += command.cwiseAbs2();
-  if (timing_) compute_ns_.push_back(compute_ns);
+  if (timing_ && compute_ns >= 0) compute_ns_.push_back(compute_ns);
   ++samples_;
 }
 

@@ -23,7 +23,8 @@ class RunMetrics {
              std::int64_t samples, bool timing);
 
   // One controller sample: the tracked states' true errors, the tracking vector on the true state,
-  // the commanded u and the control() wall time.
+  // the commanded u and the control() wall time (negative: the sample computed nothing, the flight
+  // computer was busy).
   void add(const Eigen::VectorXd& error, const Eigen::VectorXd& v_track, const Eigen::VectorXd& command,
            std::int64_t compute_ns);
 

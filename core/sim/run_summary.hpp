@@ -12,6 +12,7 @@
 #include "core/certificate_column.hpp"
 #include "core/log_column.hpp"
 #include "core/sdc_plant.hpp"
+#include "core/sim/flight_computer.hpp"
 #include "core/sim/saturation_counts.hpp"
 #include "core/sim/simulation_settings.hpp"
 
@@ -55,6 +56,8 @@ struct RunSummary {
   Eigen::VectorXd command_rms;
   // Controller samples whose applied input the actuator limits changed, per channel.
   SaturationCounts saturation;
+  // What the flight computer did, when it was in the loop (settings.computer.active()).
+  std::optional<ComputerCounts> computer;
   // J = 1/2 sum_k (vᵀ Q v + uᵀ R u) T_c with the plant's design Q and R, v the tracking vector on
   // the true state (SdcPlant::true_tracking_vector; the helicopter's V_track of Eq. 36, Eq. 32)
   // and u the commanded input, by left rectangles at the controller rate.

@@ -31,6 +31,9 @@ void SimulationSettings::validate() const {
   for (const DiscreteGust& gust : discrete_gusts) gust.validate();
   sensor_noise.validate();
   servos.validate();
+  computer.validate();
+  if (computer.latency == FlightComputerSettings::Latency::measured && !measure_compute_time)
+    throw Error("simulate: the flight computer's measured latency needs the step times measured (timing on)");
 }
 
 void SimulationSettings::check_memory(std::size_t log_columns) const {

@@ -7,6 +7,7 @@
 
 #include "core/sim/actuator_limits.hpp"
 #include "core/sim/discrete_gust.hpp"
+#include "core/sim/flight_computer.hpp"
 #include "core/sim/noise.hpp"
 #include "core/sim/sensor_noise.hpp"
 #include "core/sim/servo_dynamics.hpp"
@@ -46,6 +47,8 @@ struct SimulationSettings {
   std::vector<DiscreteGust> discrete_gusts;
   SensorNoiseSettings sensor_noise;
   ServoSettings servos;
+  // When each computed input reaches the servos (docs/model.md §15.7): none by default.
+  FlightComputerSettings computer;
   DivergenceLimits limits;
   // Servo magnitude and rate limits on the applied input: the X-Cell's (docs/model.md §12), on
   // unless turned off; the paper's setting has none.

@@ -27,16 +27,27 @@ std::int64_t call_control(ControlLaw& law, double t, const Eigen::VectorXd& meas
   return std::chrono::duration_cast<std::chrono::nanoseconds>(stop - start).count();
 }
 
-// The controller period's RK4 steps from t with `applied` held (zero-order hold). On divergence,
-// t becomes the end of the step that diverged and the reason is returned.
+// The controller period's RK4 steps from t: `previous` (the input acting before this period) up to
+// `arrival` into the period, `applied` from there (zero-order hold); the plant step that the arrival
+// falls in is split there. On divergence, t becomes the end of the step that diverged and the
+// reason is returned.
 std::optional<std::string> hold_for_one_period(const SdcPlant& plant, Disturbances& disturbances,
-                                               const Eigen::VectorXd& applied, const SimulationSettings& settings,
+                                               const Eigen::VectorXd& previous, const Eigen::VectorXd& applied,
+                                               double arrival, const SimulationSettings& settings,
                                                Rk4Workspace& workspace, Eigen::VectorXd& x, double& t) {
   for (int step = 1; step <= settings.controller_period_steps; ++step) {
     const double t_end = t + step * settings.dt;
+    const double begins = (step - 1) * settings.dt, ends = step * settings.dt;
     std::optional<std::string> failure;
     try {
-      rk4_step(plant, applied, settings.dt, workspace, x);
+      if (arrival <= begins) {
+        rk4_step(plant, applied, settings.dt, workspace, x);
+      } else if (arrival >= ends) {
+        rk4_step(plant, previous, settings.dt, workspace, x);
+      } else {
+        rk4_step(plant, previous, arrival - begins, workspace, x);
+        rk4_step(plant, applied, ends - arrival, workspace, x);
+      }
       failure = disturbances.check(x, t_end);
     } catch (const Error& error) {
       failure = failure_reason("plant", error, t_end);
@@ -73,10 +84,16 @@ void take_certificates(const ControlLaw& law, double t, std::size_t columns, std
   worst.add(t, values);
 }
 
+// What the flight computer did at one sample, for the log.
+struct ComputerSample {
+  double latency = 0.0;  // s, of the computation started at the sample (0 when none started)
+  bool skipped = false;  // the computer was busy: no computation started
+};
+
 // One log row, in the order of log_schema().
 void append_row(double t, const std::vector<TrackedState>& tracked, const Eigen::Vector3d& command_position,
                 const Eigen::VectorXd& x, const Eigen::VectorXd& measured, const Eigen::VectorXd& command,
-                const Eigen::VectorXd& applied, const Disturbances& disturbances,
+                const Eigen::VectorXd& applied, const Disturbances& disturbances, const ComputerSample* computer,
                 const std::vector<double>& certificates, std::int64_t compute_ns, RunLog& log) {
   auto& row = log.values;
   row.push_back(t);
@@ -86,6 +103,10 @@ void append_row(double t, const std::vector<TrackedState>& tracked, const Eigen:
   row.insert(row.end(), command.begin(), command.end());
   row.insert(row.end(), applied.begin(), applied.end());
   disturbances.log_values(row);
+  if (computer) {
+    row.push_back(computer->latency);
+    row.push_back(computer->skipped ? 1.0 : 0.0);
+  }
   row.insert(row.end(), certificates.begin(), certificates.end());
   row.push_back(static_cast<double>(compute_ns));
 }
@@ -93,7 +114,7 @@ void append_row(double t, const std::vector<TrackedState>& tracked, const Eigen:
 }  // namespace
 
 std::vector<LogColumn> log_schema(const SdcPlant& plant, const Disturbances& disturbances,
-                                  const std::vector<CertificateColumn>& certificates) {
+                                  const std::vector<CertificateColumn>& certificates, bool computer) {
   std::vector<LogColumn> columns{{"t", "s"}};
   for (const auto& tracked : plant.tracked_states()) columns.push_back(tracked.command);
   const std::vector<LogColumn> states = plant.state_columns(), inputs = plant.input_columns();
@@ -102,6 +123,10 @@ std::vector<LogColumn> log_schema(const SdcPlant& plant, const Disturbances& dis
   for (const auto& [name, unit] : inputs) columns.push_back({"cmd_" + name, unit});
   for (const auto& [name, unit] : inputs) columns.push_back({"app_" + name, unit});
   for (auto& column : disturbances.log_columns()) columns.push_back(std::move(column));
+  if (computer) {
+    columns.push_back({"computation_latency", "s"});
+    columns.push_back({"sample_skipped", ""});
+  }
   for (const auto& certificate : certificates) columns.push_back(certificate.column);
   columns.push_back(step_time_column());
   return columns;
@@ -121,7 +146,11 @@ RunResult simulate(ControlLaw& law, Disturbances& disturbances, const ReferenceT
 
   RunResult result;
   const std::vector<CertificateColumn> certificate_columns = law.certificate_columns();
-  result.log.columns = log_schema(plant, disturbances, certificate_columns);
+  const bool computer_in_loop = settings.computer.active();
+  if (settings.computer.latency == FlightComputerSettings::Latency::step_time && !(settings.computer.step_time > 0.0))
+    throw Error("simulate: the flight computer's step-time latency has no step time for " + law.name() +
+                " (a Flight takes it from the step times by the controller's label)");
+  result.log.columns = log_schema(plant, disturbances, certificate_columns, computer_in_loop);
   settings.check_memory(result.log.columns.size());
   const double period = settings.controller_period();
   const std::int64_t samples = settings.samples();
@@ -140,13 +169,17 @@ RunResult simulate(ControlLaw& law, Disturbances& disturbances, const ReferenceT
                      samples, settings.measure_compute_time);
 
   Eigen::VectorXd x = x0;
-  Eigen::VectorXd measured(n), command(m), applied(m), v(n), error(static_cast<Eigen::Index>(tracked.size()));
+  Eigen::VectorXd measured(n), command(m), delivered(m), applied(m), previous(m), v(n),
+      error(static_cast<Eigen::Index>(tracked.size()));
+  previous.setZero();  // acts only after a late arrival, and the first arrival is at t0
   Eigen::Vector3d padded_error;
   Rk4Workspace workspace(n);
   PositionIntegral reference_integral, true_error_integral;
   std::vector<double> certificates;
   certificates.reserve(certificate_columns.size());
   WorstCertificates worst_certificates(certificate_columns);
+  FlightComputer computer(settings.computer, period);
+  ComputerSample computer_sample;
 
   std::optional<std::string> failure = disturbances.check(x, 0.0);
   bool controller_failed = false;
@@ -165,29 +198,39 @@ RunResult simulate(ControlLaw& law, Disturbances& disturbances, const ReferenceT
                         reference.acceleration(t)};
     disturbances.measure(x, now, measured);
 
+    // The flight computer (docs/model.md §15.7): without it, every sample computes and its input
+    // arrives at once, and `delivered` is `command`.
     std::int64_t elapsed_ns = 0;
-    try {
-      elapsed_ns = call_control(law, t, measured, now, command, settings.measure_compute_time);
-      if (!command.allFinite()) throw Error("non-finite command");
-      if (!certificate_columns.empty())
-        take_certificates(law, t, certificate_columns.size(), certificates, worst_certificates);
-    } catch (const std::exception& error) {
-      // Whatever a user's controller throws (a plug-in's own exception types too) ends this run,
-      // not the program: the other runs of a comparison go on.
-      failure = failure_reason("controller", error, t);
-      controller_failed = true;
-      break;
+    computer_sample = {0.0, !computer.free_at(k)};
+    if (computer_sample.skipped) {
+      computer.skip();
+    } else {
+      try {
+        elapsed_ns = call_control(law, t, measured, now, command, settings.measure_compute_time);
+        if (!command.allFinite()) throw Error("non-finite command");
+        if (!certificate_columns.empty())
+          take_certificates(law, t, certificate_columns.size(), certificates, worst_certificates);
+      } catch (const std::exception& error) {
+        // Whatever a user's controller throws (a plug-in's own exception types too) ends this run,
+        // not the program: the other runs of a comparison go on.
+        failure = failure_reason("controller", error, t);
+        controller_failed = true;
+        break;
+      }
+      computer_sample.latency = computer.start(k, elapsed_ns);
     }
-    failure = disturbances.actuate(t, x, command, applied);
+    const std::optional<double> arrival = computer.arrival(k);
+    if (arrival) delivered = command;
+    failure = disturbances.actuate(t, x, delivered, applied);
     if (failure) break;
 
     tracking_error(tracked, x, now.position, error, padded_error);
     plant.true_tracking_vector(x, now, true_error_integral.value, v);
-    metrics.add(error, v, command, elapsed_ns);
-    if (deviation) deviation->add(x, now, v, command);
+    metrics.add(error, v, delivered, computer_sample.skipped ? -1 : elapsed_ns);
+    if (deviation) deviation->add(x, now, v, delivered);
     if (settings.keep_log && k % settings.log_every == 0)
-      append_row(t, tracked, now.position, x, measured, command, applied, disturbances, certificates, elapsed_ns,
-                 result.log);
+      append_row(t, tracked, now.position, x, measured, delivered, applied, disturbances,
+                 computer_in_loop ? &computer_sample : nullptr, certificates, elapsed_ns, result.log);
 
     // Anti-windup (ActuatorLimits::anti_windup): held, the command's integral follows the measured
     // position, so that the measured-minus-command integral the controllers see does not move.
@@ -200,7 +243,9 @@ RunResult simulate(ControlLaw& law, Disturbances& disturbances, const ReferenceT
     }
     true_error_integral.accumulate(padded_error, period);
 
-    failure = hold_for_one_period(plant, disturbances, applied, settings, workspace, x, t);
+    failure = hold_for_one_period(plant, disturbances, previous, applied, arrival.value_or(0.0), settings, workspace,
+                                  x, t);
+    previous = applied;
   }
 
   if (failure) {
@@ -218,6 +263,7 @@ RunResult simulate(ControlLaw& law, Disturbances& disturbances, const ReferenceT
   disturbances.finish(summary);
   summary.controller_counters = law.counters();
   summary.certificates = worst_certificates.worst();
+  if (computer_in_loop) summary.computer = computer.counts();
   return result;
 }
 

@@ -25,9 +25,10 @@ struct RunResult {
 // them: t; the commands of the tracked states; the true state; the measured state (meas_); the
 // commanded input (cmd_); the applied input (app_); the disturbances' own columns; the
 // controller's certificates (ControlLaw::certificate_columns), if any; the control step's wall
-// time (in_flight_step_time_ns).
+// time (in_flight_step_time_ns). With the flight computer in the loop (`computer`), its two columns
+// come before the certificates: computation_latency_s and sample_skipped.
 std::vector<LogColumn> log_schema(const SdcPlant& plant, const Disturbances& disturbances,
-                                  const std::vector<CertificateColumn>& certificates = {});
+                                  const std::vector<CertificateColumn>& certificates = {}, bool computer = false);
 // The last column of every log: the control step's wall time in flight (docs/glossary.md "Compute
 // time"), which the files of runs flown without timing leave out. Result files before format_version 4
 // named it compute_ns (experiment/result_names.hpp).
@@ -38,9 +39,11 @@ inline LogColumn step_time_column() { return {"in_flight_step_time", "ns"}; }
 //
 // One std::mt19937_64 seeded with settings.seed drives every paper draw, through `disturbances`
 // (the later sources draw from their own streams, RandomStream). Per controller sample k at
-// t_k = k T_c: the disturbances' sample(); the reference; measure(); control() (timed); actuate();
-// metrics; log; then controller_period_steps RK4 steps of dt with the applied input held
-// (zero-order hold), each followed by check() and advance(). The reference's integral is
+// t_k = k T_c: the disturbances' sample(); the reference; measure(); control() (timed) unless the
+// flight computer is busy (settings.computer, FlightComputer); actuate() of the command that reaches
+// the servos in this period; metrics; log; then controller_period_steps RK4 steps of dt with the
+// applied input held (zero-order hold; the previous period's until a late command arrives, the
+// plant step it arrives in split there), each followed by check() and advance(). The reference's integral is
 // accumulated by the PositionIntegral rule. A check() or actuate() that fails, a non-finite command,
 // or a thetad::Error from the plant ends the run as diverged; whatever the controller throws ends
 // it as failed. Throws thetad::Error for invalid settings, a log that would not fit in memory, or a

@@ -82,6 +82,17 @@ def test_actuator_limits_are_on_unless_turned_off():
     assert limits(ideal=True, actuator_limits=True)
 
 
+def test_the_campaign_factors_are_keywords_too():
+    rough = thetad.run("scenario-1", "lqr", duration_s=0.3, timing=False, turbulence_model="dryden",
+                       turbulence_intensity="severe", servo_time_constant_s=0.02, noise_scale=2)
+    assert rough.json()["settings"]["turbulence"]["intensity"] == "severe"
+    assert rough.json()["settings"]["servos"]["time_constant_s"] == [0.02] * 5
+    with pytest.raises(ValueError, match="turbulence_intensity: expected one of light moderate severe"):
+        thetad.run("scenario-1", "lqr", duration_s=0.1, turbulence_intensity="stormy")
+    with pytest.raises(ValueError, match=r"noise_scale: value -1 is outside \[0"):
+        thetad.run("scenario-1", "lqr", duration_s=0.1, noise_scale=-1)
+
+
 def test_a_registered_controller_object_flies_as_its_spec():
     tuned = thetad.controller("tuned=theta-d", k=[0.5, 2.0], l=[0.1, 0.2])
     result = thetad.run("hover-step", tuned, duration_s=0.2, summary_only=True, timing=False)

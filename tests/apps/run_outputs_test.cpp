@@ -220,6 +220,26 @@ TEST_F(RunOutputs, AReplayFliesTheRecordedRunAgainAndSaysWhetherItAgrees) {
   EXPECT_EQ(again["cost"].get<double>(), 659.3368505702687);
 }
 
+// --set takes any campaign factor for one flight, read and checked as in a campaign file.
+TEST_F(RunOutputs, SetGivesACampaignFactorToOneFlight) {
+  const Output output = thetad("run --scenario " + path("hover.yaml") + " --controller lqr --duration 0.2 --set " +
+                               "turbulence_model=dryden --set turbulence_intensity=severe --set noise_scale=0 --out " +
+                               path("set"));
+  ASSERT_EQ(output.status, 0) << output.err;
+  const nlohmann::json result = nlohmann::json::parse(thetad::testing::read_text(dir_ / "set" / "lqr.json"));
+  EXPECT_EQ(result["settings"]["turbulence"]["model"], "dryden");
+  EXPECT_EQ(result["settings"]["turbulence"]["intensity"], "severe");
+  EXPECT_EQ(result["settings"]["noise"]["scale"], 0.0);
+  const Output stormy = thetad("run --scenario " + path("hover.yaml") + " --controller lqr --set turbulence_intensity=stormy");
+  EXPECT_NE(stormy.status, 0);
+  EXPECT_THAT(stormy.err, HasSubstr("turbulence_intensity: expected one of light moderate severe"));
+  const Output unknown = thetad("run --scenario " + path("hover.yaml") + " --controller lqr --set windiness=3");
+  EXPECT_THAT(unknown.err, HasSubstr("'windiness=3': expected NAME=VALUE with NAME one of uncertainty_scale"));
+  const Output slowdown =
+      thetad("run --scenario " + path("hover.yaml") + " --controller lqr --set slowdown=3 --out " + path("slow"));
+  EXPECT_THAT(slowdown.err, HasSubstr("slowdown: only for a flight computer"));
+}
+
 TEST_F(RunOutputs, TheOutputFolderIsCheckedBeforeAnythingFlies) {
   write("file", "not a folder");
   const Output output = thetad("run --scenario " + path("hover.yaml") + " --controller lqr --out " + path("file"));

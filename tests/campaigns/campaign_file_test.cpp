@@ -204,6 +204,11 @@ TEST(CampaignFile, TheShippedCampaignsAreValid) {
   EXPECT_EQ(legs.run_count(), 4 * 4 * 24 * 5);
   EXPECT_EQ(load_campaign(fair / "legs-20.yaml").run_count(), 2 * 24 * 5);
   EXPECT_EQ(load_campaign(fair / "theta-d-ablation.yaml").run_count(), 2 * 10 * 10);
+  // The computer in the loop and the turbulence study (docs/robustness.md (e), (f)).
+  const Campaign slowdown = load_campaign(folder / "computer" / "slowdown.yaml");
+  EXPECT_EQ(slowdown.run_count(), 6 * 3 * 2);
+  EXPECT_EQ(slowdown.controllers.back().label, "sdre-cold");
+  EXPECT_EQ(load_campaign(folder / "robustness" / "turbulence.yaml").run_count(), 2 * 3 * 4 * 3);
 }
 
 }  // namespace

@@ -19,6 +19,12 @@ TEST(DisturbanceJson, EverySettingComesBackAsWritten) {
   settings.sensor_noise.bias[13] = 0.01;
   settings.servos.time_constant[1] = 0.03;
   settings.servos.delay_samples = 4;
+  settings.computer.latency = sim::FlightComputerSettings::Latency::step_time;
+  settings.computer.slowdown = 1.0 / 3.0;
+  settings.computer.overrun = sim::FlightComputerSettings::Overrun::abort;
+  settings.computer.step_times = {{"theta-d", 2.1e-6 / 3.0}, {"sdre", 4.7e-5}};
+  settings.computer.step_time = 4.7e-5;
+  settings.computer.step_time_source = "bench.json (sha256 ab, p99)";
   Json json;
   write_beyond_paper(settings, json);
   sim::SimulationSettings read;
@@ -35,6 +41,12 @@ TEST(DisturbanceJson, EverySettingComesBackAsWritten) {
   EXPECT_EQ(read.sensor_noise.bias, settings.sensor_noise.bias);
   EXPECT_EQ(read.servos.time_constant, settings.servos.time_constant);
   EXPECT_EQ(read.servos.delay_samples, 4);
+  EXPECT_EQ(read.computer.latency, settings.computer.latency);
+  EXPECT_EQ(read.computer.slowdown, settings.computer.slowdown);
+  EXPECT_EQ(read.computer.overrun, settings.computer.overrun);
+  EXPECT_EQ(read.computer.step_times, settings.computer.step_times);
+  EXPECT_EQ(read.computer.step_time, 4.7e-5);
+  EXPECT_EQ(read.computer.step_time_source, settings.computer.step_time_source);
 }
 
 // A result written before these settings existed flew without them: its replay must too, even
@@ -45,7 +57,9 @@ TEST(DisturbanceJson, AnOlderResultReadsAsEverythingOff) {
   settings.servos.delay_samples = 2;
   settings.sensor_noise.density.setConstant(1.0);
   settings.discrete_gusts = {{0, 1.0, 0.0, 1.0}};
+  settings.computer.latency = sim::FlightComputerSettings::Latency::fixed;
   read_beyond_paper(Json{{"dt_s", 0.001}}).apply(settings);
+  EXPECT_FALSE(settings.computer.active());
   EXPECT_FALSE(settings.turbulence.active());
   EXPECT_FALSE(settings.servos.active());
   EXPECT_FALSE(settings.sensor_noise.active());
