@@ -53,7 +53,7 @@ ExportedDesign theta_d_design(const ThetaDController& controller, bool feedforwa
   const Eigen::MatrixXd y0 = controller.T0() * g0_scaled;
 
   ExportedDesign design;
-  design.step_file = "theta_d_step.hpp";
+  design.step_files = {"theta_d_step.hpp"};
   design.input_weights = settings.R;
   design.initial_input = settings.initial_input;
   DesignSource& d = design.data;
