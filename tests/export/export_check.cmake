@@ -21,7 +21,7 @@ foreach(program ${SKIP_WITHOUT})
 endforeach()
 file(REMOVE_RECURSE ${WORK_DIR})
 foreach(spec "theta-d" "lqr" "theta-d-velocity=theta-d:${CMAKE_CURRENT_LIST_DIR}/velocity_feedforward.settings.yaml"
-             "sdre-capped=sdre:${CMAKE_CURRENT_LIST_DIR}/sdre_capped.settings.yaml")
+             "sdre-capped=sdre:${CMAKE_CURRENT_LIST_DIR}/../../scenarios/sdre-capped.settings.yaml")
   string(REGEX REPLACE "=.*" "" label "${spec}")
   execute_process(COMMAND ${THETAD} export --controller ${spec} --duration 14 --check-segments 7 --check-samples 40
                           --quiet --out ${WORK_DIR}

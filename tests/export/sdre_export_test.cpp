@@ -46,7 +46,7 @@ TEST(SdreExport, WritesTheCappedStepWithTheDesignPointsValueMatrix) {
   // P0 is the library's cold solution at the initial state with the initial input: what the
   // capped controller starts from after reset().
   PreparedController prepared = flight.prepare(
-      parse_controller_specs({"capped=sdre:" + std::string(THETAD_SOURCE_DIR) + "/tests/export/sdre_capped.settings.yaml"})
+      parse_controller_specs({"capped=sdre:" + std::string(THETAD_SOURCE_DIR) + "/scenarios/sdre-capped.settings.yaml"})
           .front());
   prepared.controller->reset(flight.initial_state(), 0.0);
   const auto& sdre = dynamic_cast<const SdreController&>(*prepared.controller);
