@@ -124,7 +124,7 @@ void SdreController::update_value_matrix(double t) {
         newton_residual_ = capped_->last_residual_to_terms();
         return;
       } catch (const Error&) {
-        ++fallback_count_;  // an iterate's closed loop is not Hurwitz here: solve cold
+        ++fallback_count_;  // a step failed here (a closed loop not Hurwitz, a singular operator): solve cold
       }
     }
     newton_residual_ = std::numeric_limits<double>::quiet_NaN();

@@ -29,6 +29,12 @@ struct ExportedDesign {
   std::string carried_state_setter;
 };
 
+// The wrappers of a step with an input fixed point (export/onboard/step_common.hpp): State<T> as
+// `state_type`, reset() (after `reset_comment`), step() and set_applied_input() over thetad_onboard's
+// PREFIX_reset and PREFIX_step with Design<T>.
+std::string fixed_point_step_wrappers(const std::string& state_type, const std::string& prefix,
+                                      const std::string& reset_comment);
+
 // θ–D after reset() (its design: A0, g0, T0, Ac0 at the initial state): the step of
 // export/onboard/theta_d_step.hpp; `feedforward_velocity` when it flies the velocity error form.
 ExportedDesign theta_d_design(const ThetaDController& controller, bool feedforward_velocity);

@@ -19,7 +19,7 @@ ExportedDesign sdre_design(const SdreController& controller) {
   const Eigen::Index m = settings.R.rows();
   const Eigen::LLT<Eigen::MatrixXd> llt(settings.R);
   ExportedDesign design;
-  design.step_files = {"lyapunov_schur.hpp", "sdre_step.hpp"};
+  design.step_files = {"fixed_point.hpp", "lyapunov_schur.hpp", "sdre_step.hpp"};
   design.input_weights = settings.R;
   design.initial_input = settings.initial_input;
   DesignSource& d = design.data;
@@ -37,22 +37,8 @@ ExportedDesign sdre_design(const SdreController& controller) {
     return row_major(dynamic_cast<const SdreController&>(library).last_value_matrix());
   };
   design.wrappers =
-      "template <class T>\n"
-      "using State = thetad_onboard::SdreState<T>;\n"
-      "// Loads the design point's P (the library's cold solve there) and the initial input.\n"
-      "template <class T>\n"
-      "void reset(State<T>& state) { thetad_onboard::sdre_reset<T, Design<T>>(state); }\n"
-      "template <class T>\n"
-      "thetad_onboard::Status step(State<T>& state, T t, const T* measured, const thetad_onboard::Reference<T>& reference,\n"
-      "                            T* u) {\n"
-      "  return thetad_onboard::sdre_step<T, Design<T>>(state, kHelicopter, t, measured, reference, u);\n"
-      "}\n"
-      "// The input the fixed point starts from at the next step (the last applied one): for a check that\n"
-      "// starts in the middle of a recorded flight.\n"
-      "template <class T>\n"
-      "void set_applied_input(State<T>& state, const T* input) {\n"
-      "  for (int k = 0; k < thetad_onboard::kInputs; ++k) state.applied[k] = input[k];\n"
-      "}\n"
+      fixed_point_step_wrappers("thetad_onboard::SdreState<T>", "sdre",
+                                "// Loads the design point's P (the library's cold solve there) and the initial input.\n") +
       "// The P the next step's Newton–Kleinman starts from (row-major 18 x 18), likewise.\n"
       "template <class T>\n"
       "void set_value_matrix(State<T>& state, const double* value) {\n"
