@@ -7,8 +7,9 @@
 // docs/model.md §6.2) fixed-point passes; SDRE cold (solve_care: the matrix sign function, Schur as
 // fallback) and warm (Newton–Kleinman from the last P) with the same passes; θ–D's 3-term step on
 // dynamic-size types; the plant's F, B; as a reference for the Riccati solver, the SDRE step
-// with SLICOT's SB02MD in place of solve_care; and the exported θ–D and LQR steps (docs/onboard.md)
-// in float and double, beside the registry's `theta-d` and `lqr` rows on the same states.
+// with SLICOT's SB02MD in place of solve_care; and the exported θ–D, LQR and capped SDRE steps
+// (docs/onboard.md) in float and double, beside the registry's `theta-d` and `lqr` rows and the
+// library's capped SDRE (`sdre-capped`, scenarios/sdre-capped.settings.yaml) on the same states.
 //
 // The fixed-point tolerance is 0 in those θ–D and SDRE rows, so that "3 passes" always means 3:
 // the cost of the variant, not of how fast one trajectory happens to converge. The registry's
@@ -38,8 +39,10 @@
 #include "scenarios/scenario.hpp"
 #include "tests/controllers/every_pass_settings.hpp"
 // Exported by the build (export/CMakeLists.txt) at scenario I's start, where the registry's rows
-// are designed: the paper's θ–D (namespace theta_d) and the hover LQR (namespace lqr).
+// are designed: the paper's θ–D (namespace theta_d), the hover LQR (namespace lqr) and the capped
+// SDRE (namespace sdre_capped).
 #include "lqr.hpp"
+#include "sdre-capped.hpp"
 #include "theta-d.hpp"
 
 namespace {
@@ -106,11 +109,32 @@ void time_steps(benchmark::State& state, thetad::Controller& controller) {
 
 // A controller from the registry with its defaults, built once: Google Benchmark calls a function
 // several times, and lqr-scheduled designs its table of trims (seconds) when it is built.
-void registered_step(benchmark::State& state, const std::string& name) {
+void registered_step(benchmark::State& state, const std::string& name, const std::string& settings) {
   static std::map<std::string, std::unique_ptr<thetad::Controller>> built;
-  auto& controller = built[name];
-  if (!controller) controller = recording().make(name, YAML::Node());
+  auto& controller = built[name + settings];
+  if (!controller) controller = recording().make(name, YAML::Load(settings));
   time_steps(state, *controller);
+}
+
+// The library's capped SDRE with the settings the exported one was exported with.
+const char* const kCappedSettings = "{mode: capped, newton_iterations: 2}";
+
+// The exported step's state as the library's controller leaves it after the untimed first sample
+// (time_steps()): the capped SDRE's P, which the exported reset() sets to the design point's,
+// far from the recorded window's states; nothing for θ–D and the LQR.
+template <class StepState>
+void resume_as_library(StepState& step_state) {
+  if constexpr (requires { step_state.value; }) {
+    const Recording& r = recording();
+    const auto library = r.make("sdre", YAML::Load(kCappedSettings));
+    library->reset(r.scenario.initial_state, 0.0);
+    Eigen::VectorXd u(heli::kInputDim);
+    library->control(r.samples[0].t, r.samples[0].state, r.samples[0].reference, u);
+    const Eigen::MatrixXd& P = dynamic_cast<const thetad::SdreController&>(*library).last_value_matrix();
+    for (int e = 0; e < heli::kStateDim * heli::kStateDim; ++e)
+      step_state.value[e] = P(e / heli::kStateDim, e % heli::kStateDim);
+    for (int k = 0; k < heli::kInputDim; ++k) step_state.applied[k] = u(k);
+  }
 }
 
 void theta_d_step(benchmark::State& state, int terms, int passes, bool fixed_size) {
@@ -146,7 +170,11 @@ void exported_step(benchmark::State& state) {
   const auto step_state = std::make_unique<StepState>();  // tens of KiB: not on the stack
   reset(*step_state);
   Scalar u[heli::kInputDim];
-  step(*step_state, samples[0].t, samples[0].x, samples[0].reference, u);
+  if constexpr (requires { step_state->value; }) {
+    resume_as_library(*step_state);
+  } else {
+    step(*step_state, samples[0].t, samples[0].x, samples[0].reference, u);
+  }
   std::size_t k = 1;
   double passes = 0.0;
   for (auto _ : state) {
@@ -170,6 +198,10 @@ void register_exported(const std::string& scalar) {
       ->Unit(benchmark::kMicrosecond);
   benchmark::RegisterBenchmark(("exported/lqr/" + scalar).c_str(),
                                exported_step<Scalar, lqr::State<Scalar>, lqr::reset<Scalar>, lqr::step<Scalar>>)
+      ->Unit(benchmark::kMicrosecond);
+  benchmark::RegisterBenchmark(
+      ("exported/sdre-capped/" + scalar).c_str(),
+      exported_step<Scalar, sdre_capped::State<Scalar>, sdre_capped::reset<Scalar>, sdre_capped::step<Scalar>>)
       ->Unit(benchmark::kMicrosecond);
 }
 
@@ -248,7 +280,8 @@ void register_benchmarks() {
   register_exported<float>("float");
   register_exported<double>("double");
   for (const std::string& name : thetad::ControllerRegistry::instance().names())
-    benchmark::RegisterBenchmark(name.c_str(), registered_step, name)->Unit(benchmark::kMicrosecond);
+    benchmark::RegisterBenchmark(name.c_str(), registered_step, name, "{}")->Unit(benchmark::kMicrosecond);
+  benchmark::RegisterBenchmark("sdre-capped", registered_step, "sdre", kCappedSettings)->Unit(benchmark::kMicrosecond);
 }
 
 }  // namespace

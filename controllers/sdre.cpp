@@ -1,5 +1,7 @@
 #include "controllers/sdre.hpp"
 
+#include <limits>
+
 #include <Eigen/Cholesky>
 
 #include "controllers/feedforward_controller.hpp"
@@ -10,6 +12,9 @@
 namespace thetad {
 
 namespace {
+
+// ρ above which a capped-mode sample counts as not converged: the warm mode's tolerance.
+constexpr double kNewtonConverged = 1e-12;
 
 void require_shape(const char* what, const Eigen::MatrixXd& matrix, Eigen::Index rows, Eigen::Index cols) {
   if (matrix.rows() != rows || matrix.cols() != cols) {
@@ -28,6 +33,9 @@ SdreController::SdreController(const SdcPlant& model, SdreSettings settings)
     throw Error("sdre: fixed_point_iterations must be >= 1, got " + std::to_string(settings_.fixed_point_iterations));
   }
   if (!(settings_.fixed_point_tolerance >= 0.0)) throw Error("sdre: fixed_point_tolerance must be >= 0");
+  if (settings_.newton_iterations < 1 || settings_.newton_iterations > 20) {
+    throw Error("sdre: newton_iterations must be in [1, 20], got " + std::to_string(settings_.newton_iterations));
+  }
   require_shape("Q", settings_.Q, n, n);
   require_shape("R", settings_.R, m, m);
   if (settings_.initial_input.size() == 0) settings_.initial_input = Eigen::VectorXd::Zero(m);
@@ -41,8 +49,11 @@ SdreController::SdreController(const SdcPlant& model, SdreSettings settings)
   R_inverse_ = llt.solve(Eigen::MatrixXd::Identity(m, m));
   // Both steps need P, not the closed-loop eigenvalues: the Lyapunov certificate spares the warm
   // one a Schur form and the cold one an eigensolver whenever it holds.
-  newton_.emplace(settings_.Q, settings_.R, settings_.newton_tolerance, settings_.newton_max_iterations,
-                  StabilityProof::lyapunov);
+  if (settings_.mode == SdreSettings::Mode::warm) {
+    newton_.emplace(settings_.Q, settings_.R, settings_.newton_tolerance, settings_.newton_max_iterations,
+                    StabilityProof::lyapunov);
+  }
+  if (settings_.mode == SdreSettings::Mode::capped) capped_.emplace(settings_.Q, settings_.R, settings_.newton_iterations);
   cold_.emplace(settings_.Q, settings_.R, CareMethod::automatic, StabilityProof::lyapunov);
   if (settings_.certificates) certificates_.emplace(settings_.Q, settings_.R);
 
@@ -58,7 +69,12 @@ SdreController::SdreController(const SdcPlant& model, SdreSettings settings)
 }
 
 std::string SdreController::name() const {
-  return settings_.mode == SdreSettings::Mode::warm ? "sdre-warm" : "sdre-cold";
+  switch (settings_.mode) {
+    case SdreSettings::Mode::cold: return "sdre-cold";
+    case SdreSettings::Mode::warm: return "sdre-warm";
+    case SdreSettings::Mode::capped: return "sdre-capped";
+  }
+  return "sdre";
 }
 
 std::unique_ptr<Controller> SdreController::clone() const { return std::make_unique<SdreController>(*this); }
@@ -70,11 +86,25 @@ void SdreController::reset(const Eigen::VectorXd& x0, double) {
   }
   applied_ = settings_.initial_input;
   have_P_ = false;
-  newton_->forget();
+  if (newton_) newton_->forget();
   fallback_count_ = 0;
   failure_count_ = 0;
+  unconverged_count_ = 0;
+  newton_residual_ = 0.0;
   last_iterations_ = 0;
   last_input_change_ = 0.0;
+  if (capped_) {
+    // The first sample starts from the design point's P, as the exported step does (it stores
+    // this P): K Newton steps from it at every sample, the first included, whatever the first
+    // measured state is.
+    model_->sdc(x0, applied_, F_, B_);
+    try {
+      P_ = cold_->solve(F_, B_).P;
+    } catch (const Error& error) {
+      throw Error(std::string("sdre: no stabilizing CARE solution at the initial state: ") + error.what());
+    }
+    have_P_ = true;
+  }
 }
 
 void SdreController::update_value_matrix(double t) {
@@ -88,6 +118,16 @@ void SdreController::update_value_matrix(double t) {
         ++fallback_count_;
       }
     }
+    if (settings_.mode == SdreSettings::Mode::capped && have_P_) {
+      try {
+        P_ = capped_->solve(F_, B_, P_);
+        newton_residual_ = capped_->last_residual_to_terms();
+        return;
+      } catch (const Error&) {
+        ++fallback_count_;  // a step failed here (a closed loop not Hurwitz, a singular operator): solve cold
+      }
+    }
+    newton_residual_ = std::numeric_limits<double>::quiet_NaN();
     P_ = cold_->solve(F_, B_).P;
     have_P_ = true;
   } catch (const Error& error) {
@@ -120,6 +160,7 @@ void SdreController::control(double t, const Eigen::Ref<const Eigen::VectorXd>& 
   } while (last_iterations_ < passes && last_input_change_ >= settings_.fixed_point_tolerance);
   applied_ = guess_;
   u = applied_;
+  if (capped_ && newton_residual_ > kNewtonConverged) ++unconverged_count_;
   // At the F, B the last pass solved with (docs/model.md §8.4).
   if (certificates_) certificates_->evaluate(F_, B_);
 }
@@ -130,24 +171,38 @@ Eigen::MatrixXd SdreController::value_matrix(const Eigen::VectorXd& x, const Eig
 }
 
 std::vector<std::pair<std::string, double>> SdreController::counters() const {
-  return {{"care_newton_fallbacks", fallback_count_}, {"care_failures", failure_count_}};
+  std::vector<std::pair<std::string, double>> counters{{"care_newton_fallbacks", fallback_count_},
+                                                       {"care_failures", failure_count_}};
+  if (capped_) counters.emplace_back("newton_unconverged", unconverged_count_);
+  return counters;
 }
 
 std::vector<CertificateColumn> SdreController::certificate_columns() const {
-  return certificates_ ? SdreCertificates::columns() : std::vector<CertificateColumn>{};
+  std::vector<CertificateColumn> columns;
+  if (capped_) columns.push_back({{"newton_residual", ""}, CertificateColumn::Worst::largest});
+  if (certificates_) {
+    for (CertificateColumn& column : SdreCertificates::columns()) columns.push_back(std::move(column));
+  }
+  return columns;
 }
 
 void SdreController::certificate_values(std::vector<double>& row) const {
+  if (capped_) row.push_back(newton_residual_);
   if (certificates_) certificates_->values(row);
 }
 
 namespace {
 
 std::unique_ptr<Controller> make_sdre(const Settings& fields, const ControllerContext& context) {
-  fields.allow_only({"mode", "fixed_point_iterations", "Q", "R", "feedforward", "certificates"});
+  fields.allow_only({"mode", "newton_iterations", "fixed_point_iterations", "Q", "R", "feedforward", "certificates"});
   SdreSettings settings;
-  settings.mode = fields.choice("mode", "warm", {"cold", "warm"}) == "warm" ? SdreSettings::Mode::warm
-                                                                             : SdreSettings::Mode::cold;
+  const std::string mode = fields.choice("mode", "warm", {"cold", "warm", "capped"});
+  settings.mode = mode == "warm" ? SdreSettings::Mode::warm
+                  : mode == "cold" ? SdreSettings::Mode::cold
+                                   : SdreSettings::Mode::capped;
+  // Newton steps per pass of the capped mode (read in every mode, so that the settings as used
+  // rebuild the controller; only the capped mode uses them): a fixed cost per pass.
+  settings.newton_iterations = fields.integer("newton_iterations", settings.newton_iterations, 1, 20);
   // Bounded: every pass is a Riccati solve within the 1 ms step; the fixed point settles in 2-3.
   settings.fixed_point_iterations = fields.integer("fixed_point_iterations", settings.fixed_point_iterations, 1, 100);
   // The context's design defaults: for the helicopter the paper's weights, and the fixed point
@@ -168,7 +223,8 @@ std::unique_ptr<Controller> make_sdre(const Settings& fields, const ControllerCo
 }
 
 const ControllerRegistration registration(
-    "sdre", "state-dependent Riccati equation, one CARE per sample (Eq. 37); settings: mode (cold|warm), "
+    "sdre", "state-dependent Riccati equation, one CARE per sample (Eq. 37); settings: mode (cold|warm|capped), "
+            "newton_iterations (capped: Newton steps per pass, 1-20, default 2), "
             "fixed_point_iterations, Q, R, feedforward (none|velocity|velocity+trim), certificates (off|on)",
     make_sdre);
 

@@ -8,9 +8,9 @@
 // speed follows T_mr), u is the fixed point of u -> F(x; u), B(x; u) -> u' of docs/model.md §6.2, started
 // from the previously applied input: every pass solves one CARE.
 //
-// A step allocates nothing in either mode: Newton–Kleinman works in a NewtonKleinmanSolver and the
-// cold solve (the first sample, cold mode, a warm step that failed) in a CareSolver, both sized at
-// construction.
+// A step allocates nothing in any mode: Newton–Kleinman works in a NewtonKleinmanSolver (warm) or a
+// CappedNewtonKleinman (capped) and the cold solve (the first sample, cold mode, a warm or capped
+// step that failed) in a CareSolver, all sized at construction.
 
 #include <memory>
 #include <optional>
@@ -22,6 +22,7 @@
 
 #include "controllers/controller.hpp"
 #include "controllers/sdre_certificates.hpp"
+#include "core/capped_newton_kleinman.hpp"
 #include "core/riccati.hpp"
 #include "core/sdc_plant.hpp"
 
@@ -33,6 +34,10 @@ struct SdreSettings {
            // proved by the Lyapunov certificate when that holds
     warm,  // Newton–Kleinman from the last P (NewtonKleinmanSolver, its stability proved by the
            // Lyapunov certificate when that holds), the cold solve when that fails
+    capped,  // exactly newton_iterations Newton–Kleinman steps from the last P (CappedNewtonKleinman:
+             // a fixed cost per pass, what `thetad export` puts on a flight computer), the cold
+             // solve when a step fails; the first sample starts from the cold solution at the
+             // state reset() is given (the export's design point, docs/onboard.md)
   };
   Mode mode = Mode::warm;
   // Q n×n symmetric positive semi-definite, R m×m symmetric positive definite (Eq. 37).
@@ -49,6 +54,8 @@ struct SdreSettings {
   // and its step limit.
   double newton_tolerance = 1e-12;
   int newton_max_iterations = 20;
+  // The capped mode's steps per pass (1 … 20).
+  int newton_iterations = 2;
   // Log the CARE's condition and forward-error estimates and the stabilizability margin of (F, B)
   // at every sample (SdreCertificates, docs/model.md §8.4): one more cold solve per step.
   bool certificates = false;
@@ -60,11 +67,13 @@ class SdreController final : public Controller {
   // Throws thetad::Error on settings that do not fit the model.
   SdreController(const SdcPlant& model, SdreSettings settings);
 
-  // "sdre-cold" or "sdre-warm": compare runs of the two modes side by side.
+  // "sdre-cold", "sdre-warm" or "sdre-capped": compare runs of the modes side by side.
   std::string name() const override;
   std::unique_ptr<Controller> clone() const override;
 
-  // Forgets the last P and the counts; the first sample then solves cold in either mode.
+  // Forgets the last P and the counts; the first sample then solves cold in the cold and warm
+  // modes. The capped mode solves cold here instead, at x0 with the initial input (throws
+  // thetad::Error when that has no stabilizing solution), and starts from that P.
   void reset(const Eigen::VectorXd& x0, double t0) override;
   // Throws thetad::Error when the CARE fails at the first sample (no earlier P to fall back on).
   void control(double t, const Eigen::Ref<const Eigen::VectorXd>& measured_state, const Reference& reference,
@@ -80,9 +89,13 @@ class SdreController final : public Controller {
   int fallback_count() const { return fallback_count_; }
   // Passes at which every solver failed, so the last good P was used (the run continues).
   int failure_count() const { return failure_count_; }
-  // {"care_newton_fallbacks", fallback_count()}, {"care_failures", failure_count()}.
+  // Capped-mode samples whose last pass ended with ρ above 1e-12 (newton_kleinman.hpp).
+  int unconverged_count() const { return unconverged_count_; }
+  // {"care_newton_fallbacks", fallback_count()}, {"care_failures", failure_count()}, and in the
+  // capped mode {"newton_unconverged", unconverged_count()}.
   std::vector<std::pair<std::string, double>> counters() const override;
-  // SdreCertificates' columns when settings().certificates, else none.
+  // In the capped mode newton_residual (ρ of the last pass's P; NaN when it was solved cold), then
+  // SdreCertificates' columns when settings().certificates.
   std::vector<CertificateColumn> certificate_columns() const override;
   void certificate_values(std::vector<double>& row) const override;
 
@@ -101,6 +114,7 @@ class SdreController final : public Controller {
   SdreSettings settings_;
   Eigen::MatrixXd R_inverse_;
   std::optional<NewtonKleinmanSolver> newton_;  // the warm mode's, set in the constructor
+  std::optional<CappedNewtonKleinman> capped_;  // the capped mode's
   std::optional<CareSolver> cold_;              // both modes', set in the constructor
   std::optional<SdreCertificates> certificates_;  // with settings_.certificates
 
@@ -110,6 +124,8 @@ class SdreController final : public Controller {
   Eigen::VectorXd v_, Pv_, BtPv_, guess_, update_, applied_;
   int fallback_count_ = 0;
   int failure_count_ = 0;
+  int unconverged_count_ = 0;
+  double newton_residual_ = 0.0;  // ρ of the last pass (capped mode)
   int last_iterations_ = 0;
   double last_input_change_ = 0.0;
 };

@@ -116,6 +116,15 @@ double care_residual(const MatrixRef& A, const Weights& w, const MatrixXd& P, co
   return AtP_norm;
 }
 
+void symmetrize(MatrixXd& P) {
+  for (Index j = 0; j < P.cols(); ++j)
+    for (Index i = 0; i < j; ++i) P(i, j) = P(j, i) = 0.5 * (P(i, j) + P(j, i));
+}
+
+double residual_to_terms(double residual_norm, double q_norm, double AtP_norm, double PGP_norm) {
+  return residual_norm == 0.0 ? 0.0 : residual_norm / (q_norm + 2.0 * AtP_norm + PGP_norm);
+}
+
 double frobenius_norm(const MatrixRef& M) {
   const double norm = M.norm();
   if (norm > 1e-140 && norm < 1e140) return norm;

@@ -60,6 +60,17 @@ void set_input_matrix(Weights& w, const MatrixRef& B);
 double care_residual(const MatrixRef& A, const Weights& w, const Eigen::MatrixXd& P, const Eigen::MatrixXd& WP,
                    Eigen::MatrixXd& Res);
 
+// The Newton steps add a Δ that is symmetric only up to rounding (the residual's GEMMs need not
+// be): P stays exactly symmetric by averaging the pairs in place.
+void symmetrize(Eigen::MatrixXd& P);
+// ρ = ‖Res‖_F / (‖Q‖_F + 2‖A'P‖_F + ‖PGP‖_F): the residual against the terms that cancel in it.
+// Not the normwise η below (‖A‖‖P‖ and ‖G‖‖P‖² in place of the terms): on the paper's problem P
+// is large where G is small, ‖G‖‖P‖² overstates ‖PGP‖ by ten orders of magnitude and η is 1e-25
+// for a P off by 1e-3 (measured), while ρ of the rounded exact solution is ~1e-16. A zero
+// residual is ρ = 0 even when every term is zero too (Q = 0 and P = 0, the solution of a stable
+// plant that Q does not weigh), not 0/0.
+double residual_to_terms(double residual_norm, double q_norm, double AtP_norm, double PGP_norm);
+
 // ‖M‖_F, also where Eigen's norm() fails: it sums the squares of the entries, so a matrix whose
 // entries all lie below ~1e-154 has norm 0 and one with an entry above ~1e154 has norm ∞. The
 // residual of an equation whose weights are scaled by 1e-170 would then read as converged, and one

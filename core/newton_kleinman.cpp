@@ -23,23 +23,6 @@ using MatrixRef = Eigen::Ref<const MatrixXd>;
 // most states, 0.05 1–3 for 5–7 steps, 0.3 mostly 1 but up to 15 steps, more than the tests allow.
 constexpr double kChordContraction = 0.05;
 
-// The steps add a Δ that is symmetric only up to rounding (the residual's GEMMs need not be): P
-// stays exactly symmetric by averaging the pairs in place.
-void symmetrize(MatrixXd& P) {
-  for (Index j = 0; j < P.cols(); ++j)
-    for (Index i = 0; i < j; ++i) P(i, j) = P(j, i) = 0.5 * (P(i, j) + P(j, i));
-}
-
-// ρ = ‖Res‖_F / (‖Q‖_F + 2‖A'P‖_F + ‖PGP‖_F): the residual against the terms that cancel in it.
-// Not solve_care's normwise η (‖A‖‖P‖ and ‖G‖‖P‖² in place of the terms): on the paper's
-// problem P is large where G is small, ‖G‖‖P‖² overstates ‖PGP‖ by ten orders of magnitude and η
-// is 1e-25 for a P off by 1e-3 (measured), while ρ of the rounded exact solution is ~1e-16.
-// A zero residual is ρ = 0 even when every term is zero too (Q = 0 and P = 0, the solution of a
-// stable plant that Q does not weigh), not 0/0.
-double relative_to_terms(double residual_norm, double q_norm, double AtP_norm, double PGP_norm) {
-  return residual_norm == 0.0 ? 0.0 : residual_norm / (q_norm + 2.0 * AtP_norm + PGP_norm);
-}
-
 }  // namespace
 
 NewtonKleinmanSolver::NewtonKleinmanSolver(const MatrixRef& Q, const MatrixRef& R, double tolerance,
@@ -72,7 +55,7 @@ void NewtonKleinmanSolver::evaluate(const MatrixRef& A, Iterate& it) {
   it.WP.noalias() = weights_.W * it.P;
   const double AtP_norm = care::care_residual(A, weights_, it.P, it.WP, it.Res);
   WPWPt_.noalias() = it.WP * it.WP.transpose();  // ‖PGP‖_F = ‖(WP)'(WP)‖_F = ‖(WP)(WP)'‖_F, m×m
-  it.rho = relative_to_terms(care::frobenius_norm(it.Res), weights_.q_norm, AtP_norm, care::frobenius_norm(WPWPt_));
+  it.rho = care::residual_to_terms(care::frobenius_norm(it.Res), weights_.q_norm, AtP_norm, care::frobenius_norm(WPWPt_));
 }
 
 void NewtonKleinmanSolver::factor_closed_loop(const MatrixRef& A, const Iterate& it) {
@@ -85,7 +68,7 @@ void NewtonKleinmanSolver::factor_closed_loop(const MatrixRef& A, const Iterate&
 bool NewtonKleinmanSolver::iterate(const MatrixRef& A, const MatrixRef& P0, bool chord, int& steps) {
   certified_ = false;
   current_.P = P0;
-  symmetrize(current_.P);
+  care::symmetrize(current_.P);
   evaluate(A, current_);
   bool newton_next = !chord;
   bool chord_taken = false;
@@ -147,7 +130,7 @@ bool NewtonKleinmanSolver::iterate(const MatrixRef& A, const MatrixRef& P0, bool
     }
     ++steps;
     next_.P = current_.P + delta_;
-    symmetrize(next_.P);
+    care::symmetrize(next_.P);
     evaluate(A, next_);
     if (!newton_next && !(next_.rho <= tolerance_ || next_.rho < rho)) {
       newton_next = true;  // undone: the held Schur form is too far from this closed loop

@@ -18,6 +18,7 @@ namespace {
 
 ExportedDesign design_of(const Controller& controller, const YAML::Node& settings, const std::string& label) {
   if (const auto* theta_d = dynamic_cast<const ThetaDController*>(&controller)) return theta_d_design(*theta_d, false);
+  if (const auto* sdre = dynamic_cast<const SdreController*>(&controller)) return sdre_design(*sdre);
   if (const auto* lqr = dynamic_cast<const LqrController*>(&controller)) {
     const std::vector<double> r = settings["R"].as<std::vector<double>>();
     return lqr_design(*lqr, Eigen::VectorXd::Map(r.data(), static_cast<Eigen::Index>(r.size())).asDiagonal());
@@ -28,7 +29,8 @@ ExportedDesign design_of(const Controller& controller, const YAML::Node& setting
   }
   throw Error("export: " + label + " (" + controller.name() + ", feedforward " +
               settings["feedforward"].as<std::string>("none") +
-              ") is not exportable: export writes theta-d with feedforward none or velocity and lqr with feedforward none");
+              ") is not exportable: export writes theta-d with feedforward none or velocity, lqr with feedforward none and "
+              "sdre in mode capped with feedforward none");
 }
 
 // Each line of `text` as a comment line.
@@ -50,7 +52,8 @@ std::string header_of(const Flight& flight, const PreparedController& prepared, 
                   ".\n// Standard C++20 only: no heap, no exceptions, no RTTI; the step and its data are templates over\n"
                   "// the scalar type (double, float). How to use and check it: docs/onboard.md.\n#pragma once\n\n";
   for (const char* file : {"helicopter_sdc.hpp", "step_common.hpp"}) s += onboard_source_inline(file) + "\n";
-  s += onboard_source_inline(design.step_file) + "\nnamespace " + exported.name_space + " {\n\n";
+  for (const std::string& file : design.step_files) s += onboard_source_inline(file) + "\n";
+  s += "namespace " + exported.name_space + " {\n\n";
   s += "inline constexpr const char* kLabel = \"" + exported.label + "\";\n";
   s += "inline constexpr const char* kController = \"" + exported.controller + "\";\n";
   s += "// R: the weights by which the check measures differences of u (‖R^{1/2} d‖).\n";
@@ -93,6 +96,9 @@ std::string check_data_of(const Flight& flight, PreparedController& prepared, co
   const std::unique_ptr<Controller> library = prepared.controller->clone();
   library->reset(flight.initial_state(), 0.0);
   std::vector<Eigen::VectorXd> inputs;
+  std::vector<std::vector<double>> carried;  // after each sample, when the step carries a state
+  const std::vector<double> carried_at_reset =
+      design.carried_state ? design.carried_state(*library) : std::vector<double>{};
   for (std::size_t i = 0; i < samples.size(); ++i) {
     inputs.emplace_back(design.initial_input.size());
     try {
@@ -102,18 +108,20 @@ std::string check_data_of(const Flight& flight, PreparedController& prepared, co
       inputs.pop_back();
       break;
     }
+    if (design.carried_state) carried.push_back(design.carried_state(*library));
   }
   if (inputs.empty()) throw Error("export: " + exported.label + " failed at the flight's first sample");
   samples.time.resize(inputs.size());
 
   const std::vector<std::size_t> starts = segment_starts(samples.size(), options);
   const auto per = std::min(samples.size(), static_cast<std::size_t>(options.samples_per_segment));
-  std::vector<std::vector<double>> applied, measured, reference, input;
+  std::vector<std::vector<double>> applied, carried_before, measured, reference, input;
   std::vector<double> time;
   std::string start_list;
   for (std::size_t k = 0; k < starts.size(); ++k) {
     start_list += std::to_string(k * per) + ", ";
     applied.push_back(entries(starts[k] == 0 ? design.initial_input : inputs[starts[k] - 1]));
+    if (design.carried_state) carried_before.push_back(starts[k] == 0 ? carried_at_reset : carried[starts[k] - 1]);
     for (std::size_t i = starts[k]; i < starts[k] + per; ++i) {
       time.push_back(samples.time[i]);
       measured.push_back(entries(samples.measured[i]));
@@ -133,6 +141,16 @@ std::string check_data_of(const Flight& flight, PreparedController& prepared, co
   s += "inline constexpr int kSegmentStart[" + std::to_string(starts.size() + 1) + "] = {" + start_list +
        std::to_string(time.size()) + "};\n";
   s += "// The input the controller applied before each run's first sample.\n" + rows_of("kAppliedBefore", applied);
+  // Called after reset() and set_applied_input() at the start of each run.
+  if (design.carried_state) {
+    s += "// What the step carried into each run beyond the applied input: the library's, after the sample\n"
+         "// before it.\n" + rows_of("kCarriedBefore", carried_before);
+    s += "template <class T>\nvoid resume_carried(" + exported.name_space + "::State<T>& state, int segment) {\n  " +
+         exported.name_space + "::" + design.carried_state_setter + "(state, kCarriedBefore[segment]);\n}\n";
+  } else {
+    s += "// The step carries nothing beyond the applied input.\ntemplate <class T>\nvoid resume_carried(" +
+         exported.name_space + "::State<T>&, int) {}\n";
+  }
   s += "inline constexpr double kTime[" + std::to_string(time.size()) + "] = {" + literal_list(time, "", "", 6) + "\n};\n";
   s += rows_of("kMeasured", measured);
   s += "// Position, its integral, velocity, acceleration (NED).\n" + rows_of("kReference", reference);

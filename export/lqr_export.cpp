@@ -11,7 +11,7 @@ ExportedDesign lqr_design(const LqrController& controller, const Eigen::MatrixXd
     throw Error("export: lqr was not designed for the helicopter: its gain is " + std::to_string(K.rows()) + "x" +
                 std::to_string(K.cols()));
   ExportedDesign design;
-  design.step_file = "lqr_step.hpp";
+  design.step_files = {"lqr_step.hpp"};
   design.input_weights = input_weights;
   design.initial_input = Eigen::VectorXd::Zero(K.rows());
   DesignSource& d = design.data;

@@ -53,7 +53,7 @@ ExportedDesign theta_d_design(const ThetaDController& controller, bool feedforwa
   const Eigen::MatrixXd y0 = controller.T0() * g0_scaled;
 
   ExportedDesign design;
-  design.step_file = "theta_d_step.hpp";
+  design.step_files = {"fixed_point.hpp", "theta_d_step.hpp"};
   design.input_weights = settings.R;
   design.initial_input = settings.initial_input;
   DesignSource& d = design.data;
@@ -88,22 +88,7 @@ ExportedDesign theta_d_design(const ThetaDController& controller, bool feedforwa
                                                    ConstantLyapunovSolver::packed_index(unknowns.row[b], unknowns.col[b])));
   }
   d.add_array("lyapunov_inverse", inverse);
-  design.wrappers =
-      "template <class T>\n"
-      "using State = thetad_onboard::ThetaDState<T, Design<double>::terms>;\n"
-      "template <class T>\n"
-      "void reset(State<T>& state) { thetad_onboard::theta_d_reset<T, Design<T>>(state); }\n"
-      "template <class T>\n"
-      "thetad_onboard::Status step(State<T>& state, T t, const T* measured, const thetad_onboard::Reference<T>& reference,\n"
-      "                            T* u) {\n"
-      "  return thetad_onboard::theta_d_step<T, Design<T>>(state, kHelicopter, t, measured, reference, u);\n"
-      "}\n"
-      "// The input the fixed point starts from at the next step (the last applied one): for a check that\n"
-      "// starts in the middle of a recorded flight.\n"
-      "template <class T>\n"
-      "void set_applied_input(State<T>& state, const T* input) {\n"
-      "  for (int k = 0; k < thetad_onboard::kInputs; ++k) state.applied[k] = input[k];\n"
-      "}\n";
+  design.wrappers = fixed_point_step_wrappers("thetad_onboard::ThetaDState<T, Design<double>::terms>", "theta_d", "");
   return design;
 }
 

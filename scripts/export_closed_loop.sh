@@ -5,7 +5,7 @@
 # table (completion, J, J_dev, 3-D RMS error; the float and exported-double runs relative to the
 # library's).
 #   scripts/export_closed_loop.sh [BUILD_DIR (default build)] [OUT (default out/export_closed_loop)]
-# Takes about 4 minutes on one core (seven full flights of three controllers each).
+# Took 8 minutes on a 2-vCPU host under a load average of 3 (eight full flights of three controllers each).
 set -euo pipefail
 source_dir=$(cd "$(dirname "$0")/.." && pwd)
 build=$(cd "${1:-$source_dir/build}" && pwd)
@@ -24,6 +24,7 @@ cases=(
   "scenario I, designed weights, limits on|--scenario scenario-1 --actuator-limits on --settings $source_dir/scenarios/designed.settings.yaml|theta-d"
   "scenario II, designed weights, limits on|--scenario scenario-2 --actuator-limits on --settings $source_dir/scenarios/designed.settings.yaml|theta-d"
   "scenario I, velocity feed-forward, designed weights, limits on|--scenario scenario-1 --actuator-limits on|ffv=theta-d:$source_dir/tests/export/velocity_feedforward.settings.yaml"
+  "scenario I, paper's weights, capped SDRE (K = 2)|--scenario scenario-1|sdre-capped=sdre:$source_dir/scenarios/sdre-capped.settings.yaml"
 )
 
 echo "| case | controller | status | J | J_dev | 3-D RMS (m) | ΔJ/J | ΔRMS/RMS |"

@@ -1,15 +1,17 @@
 #!/usr/bin/env bash
-# Counted, not timed (docs/onboard.md, "Counted"): the exported θ–D (N = 3, N = 1) and hover LQR
-# steps in float and double, built for a Cortex-M7 (arm-none-eabi-g++, -mcpu=cortex-m7
-# -mfpu=fpv5-d16 -mfloat-abi=hard), aarch64 Linux and x86-64, all at -O2 -fno-exceptions -fno-rtti
-# with the compilers' default contraction (FMA where the target has it), as a flight build would be.
+# Counted, not timed (docs/onboard.md, "Counted"): the exported θ–D (N = 3, N = 1), hover LQR and
+# capped SDRE (K = 2 Newton–Kleinman steps per pass) steps in float and double, built for a
+# Cortex-M7 (arm-none-eabi-g++, -mcpu=cortex-m7 -mfpu=fpv5-d16 -mfloat-abi=hard), aarch64 Linux
+# and x86-64, all at -O2 -fno-exceptions -fno-rtti with the compilers' default contraction (FMA
+# where the target has it), as a flight build would be.
 # Instructions per step: the Cortex-M7 build under qemu-system-arm (mps2-an500) and the aarch64
 # build under qemu-aarch64, one instruction per translation block (-singlestep) with every block
 # logged (-d exec,nochain), counted between the driver's two marks; the x86-64 build under
 # callgrind (instructions in run_steps()). Each counts every sample of the check data (5 runs of 4
 # consecutive samples over 20 s of scenario I) and divides by the samples. Code, constant data and
 # state from the Cortex-M7 link (arm-none-eabi-nm symbol sizes), worst stack from its call graph
-# (-fcallgraph-info=su). Prints one markdown table; takes about 5 minutes on one core.
+# (-fcallgraph-info=su). Prints one markdown table; took 24 minutes on a 2-vCPU host under a load
+# average of 6 (the SDRE's 4 million instructions a step are each logged under qemu).
 #   scripts/onboard_counts.sh [THETAD (default build/apps/thetad)] [OUT (default out/onboard_counts)]
 # Needs scripts/install-deps.sh's gcc-arm-none-eabi, libnewlib-arm-none-eabi, qemu-system-arm,
 # g++-aarch64-linux-gnu, qemu-user and valgrind.
@@ -24,7 +26,7 @@ common=(-std=c++20 -O2 -fno-exceptions -fno-rtti -Wall -Wextra -Wpedantic)
 m7=(-mcpu=cortex-m7 -mfpu=fpv5-d16 -mfloat-abi=hard -mthumb)
 
 printf 'theta-d:\n  terms: 1\n' >"$out/one-term.settings.yaml"
-specs=(theta-d "n1=theta-d:$out/one-term.settings.yaml" lqr)
+specs=(theta-d "n1=theta-d:$out/one-term.settings.yaml" lqr "sdre-capped=sdre:$source_dir/scenarios/sdre-capped.settings.yaml")
 
 # Instructions executed between the first and the second entry into count_mark in a qemu
 # -d exec log on stdin (one "Trace" line per instruction with -singlestep; the symbol last).

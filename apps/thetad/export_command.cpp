@@ -16,7 +16,7 @@ CLI::App* add_export_command(CLI::App& app, ExportArguments& arguments) {
   command->get_option("--scenario")->description("Scenario whose initial state is the design point and whose flight "
                                                  "the check data is recorded along (default scenario-1)");
   command->get_option("--out")->description("Folder for LABEL.hpp, LABEL_check_data.hpp and LABEL_check.cpp")->required();
-  command->add_option("--controller", arguments.controller, "NAME, LABEL=NAME or LABEL=NAME:SETTINGS.yaml (theta-d, lqr)")
+  command->add_option("--controller", arguments.controller, "NAME, LABEL=NAME or LABEL=NAME:SETTINGS.yaml (theta-d, lqr, sdre in mode capped)")
       ->required();
   command->add_option("--check-segments", arguments.check.segments,
                       "Runs of consecutive samples in the check data, spread over the flight")

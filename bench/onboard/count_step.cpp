@@ -42,6 +42,7 @@ int passes_of(const StepState& s) {
   for (int segment = 0; segment < check::kSegments; ++segment) {
     exported::reset(state);
     exported::set_applied_input(state, applied[segment]);
+    check::resume_carried(state, segment);  // the SDRE's P; nothing for θ–D and the LQR
     for (int i = check::kSegmentStart[segment]; i < check::kSegmentStart[segment + 1]; ++i) {
       if (exported::step(state, times[i], measured[i], references[i], input) != thetad_onboard::Status::ok) ++failures;
       passes += passes_of(state);

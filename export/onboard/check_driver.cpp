@@ -84,6 +84,7 @@ thetad_onboard::Status run(double* errors, int& failed_at) {
     T applied[kM];
     for (int k = 0; k < kM; ++k) applied[k] = T(check::kAppliedBefore[segment][k]);
     exported::set_applied_input(state, applied);
+    check::resume_carried(state, segment);
     for (int i = check::kSegmentStart[segment]; i < check::kSegmentStart[segment + 1]; ++i) {
       T measured[kN], u[kM];
       for (int j = 0; j < kN; ++j) measured[j] = T(check::kMeasured[i][j]);

@@ -26,6 +26,9 @@ enum class Status : int {
   rotor_speed_not_converged, // the root finder hit its iteration cap
   bias_state_zero,           // s = 0 or not finite: F's column 18 divides by s
   not_finite,                // the computed input is NaN or infinite
+  schur_not_converged,       // the SDRE's real Schur form hit its QR sweep cap
+  closed_loop_not_hurwitz,   // the SDRE's Newton–Kleinman iterate does not stabilize (F, B) here
+  lyapunov_singular,         // the SDRE's Lyapunov operator is singular to working precision
 };
 
 inline const char* status_name(Status status) {
@@ -37,6 +40,9 @@ inline const char* status_name(Status status) {
     case Status::rotor_speed_not_converged: return "main-rotor speed iteration did not converge";
     case Status::bias_state_zero: return "bias state s is zero or not finite";
     case Status::not_finite: return "input not finite";
+    case Status::schur_not_converged: return "real Schur form did not converge";
+    case Status::closed_loop_not_hurwitz: return "Newton-Kleinman closed loop not Hurwitz";
+    case Status::lyapunov_singular: return "Lyapunov operator singular";
   }
   return "unknown";
 }

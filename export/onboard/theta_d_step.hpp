@@ -232,23 +232,13 @@ Status theta_d_step(ThetaDState<T, Design::terms>& s, const HelicopterConstants&
   }
   // One pass is exact when the SDC does not depend on the input (the governor model).
   const int passes = p.rotor_speed_governor ? 1 : Design::fixed_point_iterations;
-  T guess[kInputs], update[kInputs];
-  for (int k = 0; k < kInputs; ++k) guess[k] = s.applied[k];
   const T elapsed = t - Design::start_time;
-  for (s.iterations = 1;; ++s.iterations) {
-    const Status status = detail::theta_d_pass<T, Design>(s, p, elapsed, measured, guess, update);
-    if (status != Status::ok) return status;
-    T change = T(0);
-    for (int k = 0; k < kInputs; ++k) {
-      const T difference = std::abs(update[k] - guess[k]);
-      if (!(difference <= change)) change = difference;  // a NaN is the largest change
-      guess[k] = update[k];
-    }
-    s.input_change = change;
-    if (s.iterations >= passes || change < Design::fixed_point_tolerance) break;
-  }
-  for (int k = 0; k < kInputs; ++k)
-    if (!std::isfinite(guess[k])) return Status::not_finite;
+  T guess[kInputs];
+  const Status status = fixed_point(s.applied, passes, T(Design::fixed_point_tolerance), s.iterations, s.input_change,
+                                    guess, [&](const T* input, T* update) {
+                                      return detail::theta_d_pass<T, Design>(s, p, elapsed, measured, input, update);
+                                    });
+  if (status != Status::ok) return status;
   for (int k = 0; k < kInputs; ++k) s.applied[k] = u[k] = guess[k];
   s.time = t;
   return Status::ok;

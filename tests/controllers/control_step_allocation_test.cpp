@@ -117,7 +117,8 @@ TEST_P(ControlStepAllocations, AreExactlyZeroOver1000Steps) {
 
 INSTANTIATE_TEST_SUITE_P(BuiltIn, ControlStepAllocations,
                          ::testing::Values(Case{"theta_d", "theta-d", "{}"}, Case{"sdre_warm", "sdre", "{mode: warm}"},
-                                           Case{"sdre_cold", "sdre", "{mode: cold}"}, Case{"lqr", "lqr", "{}"},
+                                           Case{"sdre_cold", "sdre", "{mode: cold}"}, Case{"sdre_capped", "sdre", "{mode: capped}"},
+                                           Case{"lqr", "lqr", "{}"},
                                            Case{"lqr_scheduled", "lqr-scheduled", "{}"},
                                            Case{"theta_d_velocity_trim", "theta-d", "{feedforward: velocity+trim}"},
                                            Case{"sdre_warm_velocity", "sdre", "{feedforward: velocity}"},

@@ -2,7 +2,8 @@
 # check data recorded along a short scenario-I flight, compile the check program standalone (no
 # thetad include or library; no exceptions, no RTTI, warnings as errors; its allocator aborts) and
 # run it: the exported double step must equal the library's u to 1e-12 (relative R-norm), the float
-# step to 1e-3 (measured at most 2.0e-4 over a whole flight with the paper's weights).
+# step to 1e-3 (measured at most 2.0e-4 over a whole flight with the paper's weights). The SDRE is
+# exported in its capped mode and compared with the library's capped mode.
 # Arguments: THETAD (the program), CXX (the compiler), WORK_DIR; for a cross build, TARGET_FLAGS
 # (the target's compiler flags and extra sources), RUNNER (the emulator command) or BOARD (a
 # qemu-system-arm machine: the program runs bare-metal with semihosting), and SKIP_WITHOUT (the
@@ -19,7 +20,8 @@ foreach(program ${SKIP_WITHOUT})
   endif()
 endforeach()
 file(REMOVE_RECURSE ${WORK_DIR})
-foreach(spec "theta-d" "lqr" "theta-d-velocity=theta-d:${CMAKE_CURRENT_LIST_DIR}/velocity_feedforward.settings.yaml")
+foreach(spec "theta-d" "lqr" "theta-d-velocity=theta-d:${CMAKE_CURRENT_LIST_DIR}/velocity_feedforward.settings.yaml"
+             "sdre-capped=sdre:${CMAKE_CURRENT_LIST_DIR}/../../scenarios/sdre-capped.settings.yaml")
   string(REGEX REPLACE "=.*" "" label "${spec}")
   execute_process(COMMAND ${THETAD} export --controller ${spec} --duration 14 --check-segments 7 --check-samples 40
                           --quiet --out ${WORK_DIR}
