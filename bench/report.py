@@ -189,7 +189,8 @@ def scaling_series(rows):
 
 
 # Columns in this order, then any other controller the benchmark found in the registry, by its name.
-LABELS = {"theta-d": "θ–D (3 terms)", "sdre-cold": "SDRE cold", "sdre-warm": "SDRE warm", "lqr": "LQR"}
+LABELS = {"theta-d": "θ–D (3 terms)", "sdre-cold": "SDRE cold", "sdre-warm": "SDRE warm", "sdre-capped": "SDRE capped",
+          "lqr": "LQR"}
 
 
 def kinds_of(series):
