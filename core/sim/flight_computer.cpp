@@ -1,7 +1,6 @@
 #include "core/sim/flight_computer.hpp"
 
 #include <algorithm>
-#include <cmath>
 
 #include "core/error.hpp"
 
