@@ -2,6 +2,8 @@
 
 #include <limits>
 
+#include "experiment/result_json.hpp"
+
 namespace thetad {
 
 const std::vector<MetricColumn>& metric_columns() {
@@ -38,26 +40,20 @@ RunRecord make_record(const PlannedRun& run, const FactorValues& factors, const 
   record.information = information_set(result);
   record.end_time_s = s.end_time;
   record.controller_samples = s.controller_samples;
-  // docs/glossary.md (Tracking error): rms_error_m is the RMS of the 3-D error's norm,
-  // sqrt(rms_x^2 + rms_y^2 + rms_z^2); max_axis_error_m the largest per-axis maximum (the summary
-  // keeps the maxima per axis, not the 3-D maximum).
-  record.metrics = {s.rms_tracking_error.x(), s.rms_tracking_error.y(), s.rms_tracking_error.z(),
-                    s.rms_tracking_error.norm(), s.max_tracking_error.x(), s.max_tracking_error.y(),
-                    s.max_tracking_error.z(), s.max_tracking_error.maxCoeff(), s.cost,
-                    s.cost_dev.value_or(std::numeric_limits<double>::quiet_NaN())};
-  for (int i = 0; i < s.command_rms.size(); ++i) record.metrics.push_back(s.command_rms[i]);
-  // Without timing there is no figure to give: NULL in the database, not a 0 a reader could average.
-  const bool timed = s.settings.measure_compute_time;
+  // Each figure as the result file names it (docs/glossary.md), NULL in the database where the run
+  // has none: no timing under --no-timing, no flight computer, J_dev without trims, and a plant's
+  // own tracked states and inputs where the columns name the helicopter's.
+  const nlohmann::ordered_json summary = summary_json(s);
   const double none = std::numeric_limits<double>::quiet_NaN();
-  record.metrics.insert(record.metrics.end(), {timed ? s.compute_ns_mean / 1e3 : none, timed ? s.compute_ns_median / 1e3 : none,
-                                               timed ? s.compute_ns_p99 / 1e3 : none, timed ? result.wall_time_s : none});
-  // The flight computer's counts; NULL when it was not in the loop.
-  const auto count = [&s, none](std::int64_t sim::ComputerCounts::*field) {
-    return s.computer ? static_cast<double>((*s.computer).*field) : none;
-  };
-  record.metrics.insert(record.metrics.end(), {count(&sim::ComputerCounts::missed_deadlines),
-                                               count(&sim::ComputerCounts::longest_missed_run),
-                                               count(&sim::ComputerCounts::skipped_samples)});
+  for (const MetricColumn& column : metric_columns()) {
+    const std::string name(column.name);
+    if (name == "wall_time_s")
+      record.metrics.push_back(s.settings.measure_compute_time ? result.wall_time_s : none);
+    else if (summary.contains(name) && summary.at(name).is_number())
+      record.metrics.push_back(summary.at(name).get<double>());
+    else
+      record.metrics.push_back(none);
+  }
   return record;
 }
 

@@ -64,7 +64,28 @@ void LqrController::control(double, const Eigen::Ref<const Eigen::VectorXd>& mea
 
 namespace {
 
+// Another plant than the helicopter: one gain at its design point, the origin it is regulated to
+// with its design input u0 (SdcPlant::design_defaults), which must be an equilibrium there.
+std::unique_ptr<Controller> make_design_point_lqr(const Settings& fields, const ControllerContext& context) {
+  const SdcPlant& plant = context.plant;
+  fields.allow_only({"Q", "R"});
+  LqrSettings settings;
+  settings.Q = fields.diagonal_weight("Q", context.defaults.state_weights, Settings::Weight::positive_semidefinite);
+  settings.R = fields.diagonal_weight("R", context.defaults.input_weights, Settings::Weight::positive_definite);
+  if (context.settings_only) return nullptr;
+  const Eigen::VectorXd origin = Eigen::VectorXd::Zero(plant.state_dim());
+  const double drift = plant.f(origin, context.defaults.input).cwiseAbs().maxCoeff();
+  if (!(drift <= 1e-9))
+    throw Error("lqr: the plant's design point (the origin with its design input u0) is no equilibrium, "
+                "max |f(0, u0)| = " + std::to_string(drift) + ": a gain designed there would not hold it");
+  Eigen::VectorXd tracking(plant.state_dim());
+  plant.tracking_vector(origin, Reference{}, tracking);
+  return std::make_unique<LqrController>(plant, OperatingPoint{origin, context.defaults.input, tracking},
+                                         std::move(settings));
+}
+
 std::unique_ptr<Controller> make_lqr(const Settings& fields, const ControllerContext& context) {
+  if (dynamic_cast<const heli::Helicopter*>(&context.plant) == nullptr) return make_design_point_lqr(fields, context);
   const heli::Helicopter& model = helicopter_of(context, "lqr");
   fields.allow_only({"Q", "R", "feedforward"});
   LqrSettings settings;
@@ -97,7 +118,7 @@ std::unique_ptr<Controller> make_lqr(const Settings& fields, const ControllerCon
 const ControllerRegistration registration(
     "lqr",
     "LQR at the hover trim, one fixed gain on V_track (Eq. 36) with the paper's Q and R; settings: Q, R, "
-    "feedforward (none|velocity|velocity+trim)",
+    "feedforward (none|velocity|velocity+trim); on another plant, at its design point (the origin, its u0)",
     make_lqr);
 
 }  // namespace

@@ -36,7 +36,8 @@ std::string comparison_table(const std::vector<RunResult>& runs) {
                                ? ""
                                : " (" + shape.tracked.front().command.unit + ")";
   const std::string first = shape.inputs.empty() ? "" : "RMS " + shape.inputs.front().name;
-  const std::string first_unit = shape.inputs.empty() ? "" : "(" + shape.inputs.front().unit + ")";
+  const std::string first_unit =
+      shape.inputs.empty() || shape.inputs.front().unit.empty() ? "" : "(" + shape.inputs.front().unit + ")";
   std::string text;
   append(text, "%-*s  %-22s %-13s", w, "", "", "");
   if (axes > 0)
@@ -63,7 +64,9 @@ std::string comparison_table(const std::vector<RunResult>& runs) {
       append(text, " %18.4f  ", s.rms_tracking_error.norm());
       for (Eigen::Index k = 0; k < s.max_tracking_error.size(); ++k) append(text, "%9.4f", s.max_tracking_error[k]);
     }
-    append(text, " %9.4g %9.4f", s.command_rms.size() > 0 ? s.command_rms[0] : 0.0, other_inputs_effort(s));
+    append(text, " %9.4g", s.command_rms.size() > 0 ? s.command_rms[0] : 0.0);
+    if (s.command_rms.size() > 1) append(text, " %9.4f", other_inputs_effort(s));
+    else append(text, " %9s", "");
     if (s.cost_dev) append(text, " %11.4g", *s.cost_dev);
     else append(text, " %11s", "-");
     append(text, " %11.4g", s.cost);

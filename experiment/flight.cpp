@@ -20,22 +20,49 @@ namespace thetad {
 
 namespace {
 
+// The plant a scenario file names, built from its settings block; errors name the file and the field.
+NamedPlant registered_plant(const Scenario& scenario) {
+  const PlantRegistry& registry = PlantRegistry::instance();
+  if (!registry.contains(scenario.plant))
+    throw Error(scenario.source + ": field 'plant': unknown plant '" + scenario.plant + "' (known: " +
+                registry.known_names() + "; a plug-in's plant needs --plugin or THETAD_PLUGIN_PATH)");
+  try {
+    return with_settings_source(scenario.source,
+                                [&] { return registry.make(scenario.plant, scenario.plant_settings); });
+  } catch (const SettingsError&) {
+    throw;
+  } catch (const Error& error) {
+    throw Error(scenario.source + ": field 'plant_settings': " + error.what());
+  }
+}
+
 }  // namespace
 
 Flight::Flight(const std::string& scenario, const RunControls& controls)
-    : Flight(ScenarioText{read_text_file(find_scenario(scenario)), find_scenario(scenario).string()}, controls) {}
+    : Flight(from_text(read_text_file(find_scenario(scenario)), find_scenario(scenario).string(), controls)) {}
 
 Flight Flight::from_text(const std::string& text, const std::string& file, const RunControls& controls) {
-  return Flight(ScenarioText{text, file}, controls);
+  Scenario parsed = parse_scenario(text, file);
+  Flight flight;
+  if (parsed.plant.empty()) {
+    flight = Flight(parsed, controls);
+  } else {
+    NamedPlant named = registered_plant(parsed);
+    if (parsed.initial_state.size() == 0) parsed.initial_state = named.initial_state;
+    flight = plant_flight(std::move(named.plant), std::move(parsed), controls);
+  }
+  // The very bytes it was parsed from, so that a replay needs no file that may have changed.
+  flight.provenance_.scenario_text = text;
+  flight.provenance_.scenario_sha256 = sha256_hex(text);
+  // Absolute, so that a replay from another folder finds it.
+  flight.provenance_.scenario_file = std::filesystem::absolute(file).lexically_normal().string();
+  return flight;
 }
 
-Flight::Flight(const ScenarioText& source, const RunControls& controls)
-    : scenario_(as_flown(controls, parse_scenario(source.text, source.file))),
+Flight::Flight(const Scenario& parsed, const RunControls& controls)
+    : scenario_(as_flown(controls, parsed)),
       settings_(scenario_.simulation_settings()),
       initial_state_(offset_initial_state(controls, scenario_.initial_state)) {
-  // The very bytes it was parsed from, so that a replay needs no file that may have changed.
-  provenance_.scenario_text = source.text;
-  provenance_.scenario_sha256 = sha256_hex(source.text);
   const auto helicopter = std::make_shared<const heli::Helicopter>(heli::Parameters::nominal(), scenario_.model_options);
   helicopter_ = helicopter.get();
   plant_ = helicopter;
@@ -46,8 +73,6 @@ Flight::Flight(const ScenarioText& source, const RunControls& controls)
   provenance_.build = build_info();
   provenance_.plant = "helicopter";
   provenance_.scenario_name = scenario_.name;
-  // Absolute, so that a replay from another folder finds it.
-  provenance_.scenario_file = std::filesystem::absolute(scenario_.source).lexically_normal().string();
   provenance_.model_preset = scenario_.model_preset;
   provenance_.model_options = scenario_.model_options.to_string();
   provenance_.seed = settings_.seed;
@@ -60,46 +85,68 @@ Flight::Flight(const ScenarioText& source, const RunControls& controls)
   settings_.check_memory(log_width());
 }
 
-Flight Flight::of_plant(std::shared_ptr<const SdcPlant> plant, const std::string& name,
-                        const Eigen::VectorXd& initial_state, const RunControls& controls) {
-  if (!controls.duration) throw Error("plant " + name + ": its flight needs a duration (it has no scenario to say it)");
-  if (initial_state.size() != plant->state_dim())
-    throw Error("plant " + name + ": the initial state has " + std::to_string(initial_state.size()) +
-                " entries, the plant " + std::to_string(plant->state_dim()) + " states");
+Flight Flight::plant_flight(std::shared_ptr<const SdcPlant> plant, Scenario scenario, const RunControls& controls) {
+  const std::string& name = scenario.plant;
+  const std::string where = scenario.source.empty() ? "plant " + name : scenario.source + " (plant " + name + ")";
+  if (scenario.initial_state.size() != plant->state_dim())
+    throw Error(where + ": " + (scenario.source.empty() ? "the initial state" : "field 'initial_state'") + " has " +
+                std::to_string(scenario.initial_state.size()) + " entries, the plant " +
+                std::to_string(plant->state_dim()) + " states");
   if (controls.initial_offset || controls.initial_attitude_offset || controls.speed_scale || controls.course)
-    throw Error("plant " + name + ": initial offsets, speed scales and courses apply to the helicopter's scenarios");
+    throw Error(where + ": initial offsets, speed scales and courses apply to the helicopter's scenarios");
   // It flies as it is (sim::NoDisturbances): a switch that turns a disturbance on would be recorded
   // as on and have no effect.
   for (const auto& asked : {controls.parameter_uncertainty, controls.wind_gust, controls.measurement_noise,
                             controls.actuator_noise, controls.wind_noise, controls.induced_velocity_noise,
                             controls.actuator_limits}) {
     if (asked.value_or(false))
-      throw Error("plant " + name + ": it flies without disturbances or actuator limits (those are the helicopter's)");
+      throw Error(where + ": it flies without disturbances or actuator limits (those are the helicopter's)");
   }
   Flight flight;
-  flight.scenario_.name = name;
-  flight.scenario_.description = "the plant " + name + " regulated to the origin";
-  flight.scenario_.initial_state = initial_state;
-  flight.settings_ = sim::SimulationSettings::ideal();
+  flight.settings_ = scenario.simulation_settings(sim::SimulationSettings::ideal());
   apply(controls, flight.settings_);
   flight.settings_.actuator_limits.enabled = false;  // the helicopter's servos, nothing to do with this plant
-  flight.scenario_.duration = flight.settings_.duration;
-  flight.initial_state_ = initial_state;
-  flight.plant_ = std::move(plant);
+  scenario.duration = flight.settings_.duration;
+  if (scenario.description.empty()) scenario.description = "the plant " + name + " regulated to the origin";
+  flight.initial_state_ = scenario.initial_state;
   flight.provenance_.build = build_info();
   flight.provenance_.plant = name;
-  flight.provenance_.scenario_name = name;
-  flight.provenance_.initial_state.assign(initial_state.data(), initial_state.data() + initial_state.size());
+  flight.provenance_.scenario_name = scenario.name;
+  flight.provenance_.initial_state.assign(scenario.initial_state.data(),
+                                          scenario.initial_state.data() + scenario.initial_state.size());
   flight.provenance_.seed = flight.settings_.seed;
   flight.provenance_.dt = flight.settings_.dt;
+  flight.scenario_ = std::move(scenario);
+  flight.plant_ = std::move(plant);
   flight.settings_.check_memory(flight.log_width());
   return flight;
+}
+
+Flight Flight::of_plant(std::shared_ptr<const SdcPlant> plant, const std::string& name,
+                        const Eigen::VectorXd& initial_state, const RunControls& controls) {
+  if (!controls.duration) throw Error("plant " + name + ": its flight needs a duration (it has no scenario to say it)");
+  Scenario scenario;
+  scenario.name = name;
+  scenario.plant = name;
+  scenario.initial_state = initial_state;
+  scenario.duration = *controls.duration;
+  return plant_flight(std::move(plant), std::move(scenario), controls);
 }
 
 Flight Flight::of_plant(const std::string& name, const std::optional<Eigen::VectorXd>& initial_state,
                         const RunControls& controls) {
   NamedPlant named = PlantRegistry::instance().make(name, YAML::Node());
   return of_plant(std::move(named.plant), name, initial_state ? *initial_state : named.initial_state, controls);
+}
+
+Flight Flight::of_scenario_or_plant(const std::string& scenario, const std::string& plant,
+                                   const std::optional<Eigen::VectorXd>& initial_state, const RunControls& controls) {
+  if (scenario.empty() == plant.empty())
+    throw Error("a flight needs a scenario or a registered plant: one of them" +
+                std::string(scenario.empty() ? "" : " (a scenario file may name a plant: docs/plants.md)"));
+  if (!plant.empty()) return of_plant(plant, initial_state, controls);
+  if (initial_state) throw Error("an initial state is given for a plant; a scenario file says its own");
+  return Flight(scenario, controls);
 }
 
 const heli::Helicopter& Flight::model() const {

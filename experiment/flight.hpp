@@ -36,8 +36,9 @@ struct PreparedController {
 // controllers, before anything flies or is written.
 class Flight {
  public:
-  // The helicopter through `scenario`: a file, or the name of a shipped scenario (find_scenario),
-  // with the paper's disturbances (sim::HelicopterDisturbances) as the scenario and controls set them.
+  // The flight `scenario` says: a file, or the name of a shipped scenario (find_scenario). The
+  // helicopter with the paper's disturbances (sim::HelicopterDisturbances) as the scenario and
+  // controls set them; or the registered plant the file names (`plant:`), as of_plant flies it.
   explicit Flight(const std::string& scenario, const RunControls& controls = {});
   // The same from a scenario's text, as a result recorded it; `file` names it in messages.
   static Flight from_text(const std::string& text, const std::string& file, const RunControls& controls);
@@ -50,6 +51,11 @@ class Flight {
   // unless `initial_state` is given.
   static Flight of_plant(const std::string& name, const std::optional<Eigen::VectorXd>& initial_state,
                          const RunControls& controls);
+
+  // The front ends' choice: the flight of `scenario` (a file or a shipped name), or of the
+  // registered plant `plant` (from `initial_state` when given); exactly one of the two names.
+  static Flight of_scenario_or_plant(const std::string& scenario, const std::string& plant,
+                                     const std::optional<Eigen::VectorXd>& initial_state, const RunControls& controls);
 
   // The scenario as flown: at the controls' speed_scale and course (a plant's flight: named after the plant,
   // holding the origin).
@@ -67,6 +73,8 @@ class Flight {
   const SdcPlant& plant() const { return *plant_; }
   // The same as the helicopter; throws thetad::Error naming the plant when the flight has another.
   const heli::Helicopter& model() const;
+  // The helicopter, or null when the flight has another plant.
+  const heli::Helicopter* helicopter() const { return helicopter_; }
   // What produced a run of this flight, less the controller (and the host and time, stamped per run).
   const Provenance& provenance() const { return provenance_; }
   // "ideal (...)" with neither disturbances nor actuator limits; else "all disturbances (the
@@ -98,12 +106,12 @@ class Flight {
   std::optional<sim::DeviationCost> deviation_cost(std::string& why_not) const;
 
  private:
-  struct ScenarioText {
-    std::string text;
-    std::string file;
-  };
   Flight() = default;
-  Flight(const ScenarioText& source, const RunControls& controls);
+  // The helicopter through `parsed` (no plant named).
+  Flight(const Scenario& parsed, const RunControls& controls);
+  // `plant` regulated to the origin from scenario.initial_state, as the scenario (a file's or the
+  // one of_plant makes) and the controls say; scenario.plant is its name.
+  static Flight plant_flight(std::shared_ptr<const SdcPlant> plant, Scenario scenario, const RunControls& controls);
   // The columns of a run's log: what SimulationSettings::check_memory needs.
   std::size_t log_width() const;
 

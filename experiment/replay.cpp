@@ -95,16 +95,17 @@ RunControls controls_of(const Json& settings, const Json& provenance) {
   return controls;
 }
 
-// The flight a result recorded: its plant's from the registry, its scenario's from the text it
-// recorded (version 2) or else from its file, which must still be the recorded bytes (version 1).
+// The flight a result recorded: from the scenario text it recorded (version 2; a plant's scenario
+// file too), or else a plant's flight without a scenario file (`--plant`) from the registry, or else
+// the helicopter's scenario from its file, which must still be the recorded bytes (version 1).
 Flight recorded_flight(const Json& recorded, const std::string& file) {
   const Json& provenance = recorded.at("provenance");
   const RunControls controls = controls_of(recorded.at("settings"), provenance);
   const std::string plant = provenance.value("plant", "helicopter");
-  if (plant != "helicopter") {
-    if (!PlantRegistry::instance().contains(plant))
-      throw Error(file + ": the run flew the plant '" + plant + "', which no loaded plug-in registers (load the " +
-                  "plug-in that has it with --plugin or THETAD_PLUGIN_PATH)");
+  if (plant != "helicopter" && !PlantRegistry::instance().contains(plant))
+    throw Error(file + ": the run flew the plant '" + plant + "', which no loaded plug-in registers (load the " +
+                "plug-in that has it with --plugin or THETAD_PLUGIN_PATH)");
+  if (plant != "helicopter" && !provenance.at("scenario").contains("text")) {
     const std::vector<double> x0 = provenance.at("initial_state").get<std::vector<double>>();
     return Flight::of_plant(plant, Eigen::Map<const Eigen::VectorXd>(x0.data(), static_cast<Eigen::Index>(x0.size())),
                             controls);

@@ -47,6 +47,9 @@ struct OptimalControlProblem {
   std::optional<int> sampled_position_integral;
   // That sampled integral at the start of the horizon (0 from the start of a flight).
   Eigen::Vector3d initial_integral = Eigen::Vector3d::Zero();
+  // A plant that gives no Jacobian (SdcPlant::jacobian) is differentiated by central differences
+  // of f when set (slower, and exact to about eps^(2/3) only), refused when not.
+  bool finite_differences = false;
 
   double controller_period() const { return dt * controller_period_steps; }
   int samples() const { return intervals * interval_periods; }

@@ -7,7 +7,7 @@
 
 #include "core/error.hpp"
 #include "core/helicopter/state.hpp"
-#include "core/sim/helicopter_disturbances.hpp"
+#include "core/sim/simulator.hpp"
 #include "optimal/optimum_run.hpp"
 #include "optimal/shooting_interval.hpp"
 
@@ -16,9 +16,6 @@ namespace thetad {
 const char* cost_name(OptimalCost cost) { return cost == OptimalCost::deviation ? "J_dev" : "J"; }
 
 namespace {
-
-using heli::kInputDim;
-using heli::kStateDim;
 
 // Whole multiples of the controller period, or an error naming the option.
 int periods_in(double seconds, double period, const char* what) {
@@ -56,9 +53,10 @@ OptimalControlProblem optimality_problem(const Flight& flight, const OptimalityO
     throw Error("optimality gap: the horizon (" + std::to_string(samples * period) +
                 " s) is not a whole number of control intervals (" + std::to_string(options.control_interval) + " s)");
   }
-  const DesignDefaults design = flight.model().design_defaults();
+  const SdcPlant& plant = flight.plant();
+  const DesignDefaults design = plant.design_defaults();
   OptimalControlProblem problem;
-  problem.plant = &flight.model();
+  problem.plant = &plant;
   problem.reference = &flight.scenario().trajectory;
   problem.initial_state = flight.initial_state();
   problem.first_sample = first;
@@ -68,7 +66,9 @@ OptimalControlProblem optimality_problem(const Flight& flight, const OptimalityO
   problem.controller_period_steps = s.controller_period_steps;
   problem.interval_periods = interval_periods;
   problem.intervals = samples / interval_periods;
-  problem.sampled_position_integral = heli::kXi;  // as simulate() prices J
+  if (flight.helicopter()) problem.sampled_position_integral = heli::kXi;  // as simulate() prices J
+  Eigen::MatrixXd dfdx(plant.state_dim(), plant.state_dim()), dfdu(plant.state_dim(), plant.input_dim());
+  problem.finite_differences = !plant.jacobian(flight.initial_state(), design.input, dfdx, dfdu);
   if (s.actuator_limits.enabled) {
     problem.input_lower = s.actuator_limits.lower;
     problem.input_upper = s.actuator_limits.upper;
@@ -114,14 +114,15 @@ const RunResult& warm_start_flight(const std::vector<RunResult>& flights, const 
 struct Logged {
   Eigen::MatrixXd states, commands, applied;
 
-  explicit Logged(const RunResult& run)
-      : states(run.log.rows(), kStateDim), commands(run.log.rows(), kInputDim), applied(run.log.rows(), kInputDim) {
-    const Eigen::Index state = sim::helicopter_log_column("x_p_m"), command = sim::helicopter_log_column("cmd_T_mr_N"),
-                       input = sim::helicopter_log_column("app_T_mr_N");
+  Logged(const RunResult& run, const SdcPlant& plant)
+      : states(run.log.rows(), plant.state_dim()),
+        commands(run.log.rows(), plant.input_dim()),
+        applied(run.log.rows(), plant.input_dim()) {
+    const sim::LogLayout layout = sim::log_layout(plant);
     for (Eigen::Index k = 0; k < run.log.rows(); ++k) {
-      states.row(k) = run.log.row(k).segment(state, kStateDim);
-      commands.row(k) = run.log.row(k).segment(command, kInputDim);
-      applied.row(k) = run.log.row(k).segment(input, kInputDim);
+      states.row(k) = run.log.row(k).segment(layout.state, states.cols());
+      commands.row(k) = run.log.row(k).segment(layout.command, commands.cols());
+      applied.row(k) = run.log.row(k).segment(layout.applied, applied.cols());
     }
   }
   // From the segment's first sample on.
@@ -134,7 +135,7 @@ OptimalControlProblem from_flight(const OptimalControlProblem& segment, const Lo
   OptimalControlProblem problem = segment;
   const double period = segment.controller_period();
   PositionIntegral error;
-  for (int k = 0; k < segment.first_sample; ++k) {
+  for (int k = 0; segment.sampled_position_integral && k < segment.first_sample; ++k) {
     const Eigen::Vector3d position = flight.states.row(k).head<3>().transpose();
     error.accumulate(position - segment.reference->position(k * period), period);
   }
@@ -192,7 +193,7 @@ SegmentOptimum solve_segment(const Flight& flight, const OptimalControlProblem& 
                              const OptimalityOptions& options, Progress* progress, const std::string& suffix) {
   SegmentOptimum optimum;
   optimum.from = from.spec.label;
-  const Logged log(from);
+  const Logged log(from, flight.plant());
   const int first = segment.first_sample;
   optimum.problem = first == 0 ? segment : from_flight(segment, log);
   const ShootingTrajectory start =
@@ -264,8 +265,10 @@ OptimalityGap optimality_gap(const Flight& flight, std::vector<PreparedControlle
       gap.costs.push_back(std::numeric_limits<double>::quiet_NaN());
     else if (segment.first_sample == 0)
       gap.costs.push_back(flight_cost(run, options.cost));
-    else
-      gap.costs.push_back(segment_cost(from_flight(segment, Logged(run)), Logged(run)));
+    else {
+      const Logged log(run, flight.plant());
+      gap.costs.push_back(segment_cost(from_flight(segment, log), log));
+    }
   }
   if (segment.first_sample == 0) {
     const RunResult& start = warm_start_flight(gap.flights, options.warm_start, options.cost);

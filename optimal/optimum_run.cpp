@@ -3,12 +3,24 @@
 #include "core/helicopter/state.hpp"
 #include "core/sim/helicopter_disturbances.hpp"
 #include "core/sim/run_metrics.hpp"
+#include "core/sim/simulator.hpp"
 #include "optimal/shooting_interval.hpp"
 
 namespace thetad {
 
-using heli::kInputDim;
-using heli::kStateDim;
+namespace {
+
+// How the transcription's derivatives were had: the helicopter's Jacobian is automatic
+// differentiation, another plant's its own (SdcPlant::jacobian), or central differences without one.
+const char* derivatives(const Flight& flight, const OptimalControlProblem& problem) {
+  if (problem.finite_differences)
+    return "RK4 sensitivities with central differences of f (the plant gives no Jacobian); L-BFGS Hessian";
+  return flight.helicopter() ? "exact: RK4 sensitivities with the plant's Jacobian (automatic differentiation); "
+                               "L-BFGS Hessian"
+                             : "exact: RK4 sensitivities with the plant's Jacobian (SdcPlant::jacobian); L-BFGS Hessian";
+}
+
+}  // namespace
 
 RunResult optimum_run(const Flight& flight, const OptimalControlProblem& problem, const OptimalControlSolution& solution,
                       const std::string& warm_start, double control_interval, double tolerance, const std::string& label) {
@@ -24,7 +36,7 @@ RunResult optimum_run(const Flight& flight, const OptimalControlProblem& problem
   settings["start"] = problem.start_time();
   settings["control_interval"] = control_interval;
   settings["intervals"] = problem.intervals;
-  settings["derivatives"] = "exact: RK4 sensitivities with the plant's Jacobian (automatic differentiation); L-BFGS Hessian";
+  settings["derivatives"] = derivatives(flight, problem);
   settings["warm_start"] = warm_start;
   settings["ipopt_status"] = solution.outcome.status;
   settings["ipopt_iterations"] = solution.iterations;
@@ -35,45 +47,51 @@ RunResult optimum_run(const Flight& flight, const OptimalControlProblem& problem
   summary.controller = "optimal";
   summary.settings = flight.settings();
   summary.settings.measure_compute_time = false;  // no control step to time
-  summary.model_options = flight.model().options().to_string();
+  const SdcPlant& plant = flight.plant();
+  const heli::Helicopter* helicopter = flight.helicopter();
+  if (helicopter) summary.model_options = helicopter->options().to_string();
   summary.end_time = problem.start_time() + problem.horizon();
   if (!solution.outcome.converged) {
     summary.status = sim::RunStatus::failed;
     summary.reason = "Ipopt did not converge (" + solution.outcome.status + ")";
   }
   const double period = problem.controller_period();
-  summary.tracked = flight.model().tracked_states();
-  summary.inputs = flight.model().input_columns();
-  summary.saturation = sim::SaturationCounts::none(kInputDim);
+  summary.tracked = plant.tracked_states();
+  summary.inputs = plant.input_columns();
+  const int n = plant.state_dim(), m = plant.input_dim();
+  summary.saturation = sim::SaturationCounts::none(m);
   // J with the design weights and J_dev with its own, whichever the problem minimized: as every flight has them.
-  const DesignDefaults design = flight.model().design_defaults();
-  sim::RunMetrics metrics(design.state_weights, design.input_weights, 3, period, problem.samples(), false);
+  const DesignDefaults design = plant.design_defaults();
+  const auto tracked = static_cast<Eigen::Index>(summary.tracked.size());
+  sim::RunMetrics metrics(design.state_weights, design.input_weights, tracked, period, problem.samples(), false);
   std::string no_deviation;
   std::optional<sim::DeviationCost> deviation = flight.deviation_cost(no_deviation);
   const std::vector<Reference> references = sampled_references(problem);
-  run.log.columns = sim::helicopter_log_schema();
+  run.log.columns = helicopter ? sim::helicopter_log_schema() : sim::log_schema(plant, *flight.make_disturbances());
   const auto columns = static_cast<Eigen::Index>(run.log.columns.size());
   run.log.values.assign(static_cast<std::size_t>(problem.samples() * columns), 0.0);
-  const Eigen::Index measured = sim::helicopter_log_column("meas_x_p_m"),
-                     command = sim::helicopter_log_column("cmd_T_mr_N"),
-                     applied = sim::helicopter_log_column("app_T_mr_N"),
-                     rotor = sim::helicopter_log_column("Omega_mr_rad_per_s");
+  const sim::LogLayout layout = sim::log_layout(plant);
+  const std::vector<TrackedState> tracked_states = plant.tracked_states();
+  Eigen::VectorXd error(tracked);
+  const Eigen::Index rotor = helicopter ? sim::helicopter_log_column("Omega_mr_rad_per_s") : -1;
   for (Eigen::Index k = 0; k < solution.samples.rows(); ++k) {
     const double t = solution.samples(k, 0);
-    const Eigen::VectorXd x = solution.samples.row(k).segment(1, kStateDim).transpose();
-    const Eigen::VectorXd u = solution.samples.row(k).segment(1 + kStateDim, kInputDim).transpose();
-    const Eigen::VectorXd v = solution.samples.row(k).tail(kStateDim).transpose();
+    const Eigen::VectorXd x = solution.samples.row(k).segment(1, n).transpose();
+    const Eigen::VectorXd u = solution.samples.row(k).segment(1 + n, m).transpose();
+    const Eigen::VectorXd v = solution.samples.row(k).tail(n).transpose();
     const Reference& reference = references[static_cast<std::size_t>(k)];
-    metrics.add(Eigen::VectorXd(x.head<3>() - reference.position), v, u, 0);
+    for (Eigen::Index i = 0; i < tracked; ++i)
+      error[i] = x[tracked_states[static_cast<std::size_t>(i)].index] - reference.position[i];
+    metrics.add(error, v, u, 0);
     if (deviation) deviation->add(x, reference, v, u);
     Eigen::Map<Eigen::RowVectorXd> row(run.log.values.data() + k * columns, columns);
     row(0) = t;
-    row.segment<3>(1) = reference.position.transpose();
-    row.segment(4, kStateDim) = x.transpose();
-    row.segment(measured, kStateDim) = x.transpose();  // the transcription has no sensors
-    row.segment(command, kInputDim) = u.transpose();
-    row.segment(applied, kInputDim) = u.transpose();
-    row(rotor) = flight.model().rotor_speed(x, u[heli::kTmr]);
+    row.segment(1, tracked) = reference.position.head(tracked).transpose();
+    row.segment(layout.state, n) = x.transpose();
+    row.segment(layout.measured, n) = x.transpose();  // the transcription has no sensors
+    row.segment(layout.command, m) = u.transpose();
+    row.segment(layout.applied, m) = u.transpose();
+    if (helicopter) row(rotor) = helicopter->rotor_speed(x, u[heli::kTmr]);
   }
   metrics.finish(summary);
   if (deviation) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/central_differences.hpp"
 #include "core/error.hpp"
 
 namespace thetad {
@@ -194,6 +195,15 @@ const Eigen::VectorXd& ShootingInterval::stage(int i) {
   return stage_;
 }
 
+void ShootingInterval::differentiate(const Eigen::VectorXd& x, const Eigen::VectorXd& u) {
+  Eigen::VectorXd z(n_ + m_);
+  z << x, u;
+  const Eigen::MatrixXd dfdz =
+      central_differences([this](const Eigen::VectorXd& at) { return problem_.plant->f(at.head(n_), at.tail(m_)); }, z);
+  dfdx_ = dfdz.leftCols(n_);
+  dfdu_ = dfdz.rightCols(m_);
+}
+
 // RK4's stage slopes k_i = f(x + c_i dt k_{i-1}, u) differentiate to K_i = A_i (S + c_i dt K_{i-1})
 // + [0 B_i], with A_i, B_i the plant's Jacobian at stage i; the step S+ = S + dt/6 (K1 + 2 K2 +
 // 2 K3 + K4) is the exact derivative of the step x+ that rk4_step takes.
@@ -201,8 +211,12 @@ void ShootingInterval::step_sensitivity(const Eigen::VectorXd& u) {
   const double dt = problem_.dt;
   const double offset[4] = {0.0, 0.5 * dt, 0.5 * dt, dt};
   for (int i = 0; i < 4; ++i) {
-    if (!problem_.plant->jacobian(stage(i), u, dfdx_, dfdu_))
-      throw Error("optimal control: the plant gives no Jacobian of f (SdcPlant::jacobian), which the transcription needs");
+    if (!problem_.plant->jacobian(stage(i), u, dfdx_, dfdu_)) {
+      if (!problem_.finite_differences)
+        throw Error("optimal control: the plant gives no Jacobian of f (SdcPlant::jacobian), which the transcription "
+                    "needs (or allow central differences: OptimalControlProblem::finite_differences)");
+      differentiate(stage(i), u);
+    }
     if (i == 0) {
       slopes_[0].noalias() = dfdx_ * sensitivity_;
     } else {

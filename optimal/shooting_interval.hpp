@@ -53,6 +53,8 @@ class ShootingInterval {
   // Advances sensitivity_ (d x / d(x at the node, u)) over the RK4 step from x_ whose stage slopes
   // are in workspace_.
   void step_sensitivity(const Eigen::VectorXd& u);
+  // dfdx_ and dfdu_ at (x, u) by central differences of f, for a plant that gives no Jacobian.
+  void differentiate(const Eigen::VectorXd& x, const Eigen::VectorXd& u);
   // J_dev's V* and u_r at x_ (into aim_state_, aim_input_) and, with `gradient`, their derivatives
   // in x by central differences (V* depends on x through the attitude only, smoothly).
   void aim(const Reference& reference, bool gradient);

@@ -39,7 +39,7 @@ void bind_bench(py::module_& module) {
           Progress watched(Progress::Mode::quiet, observer.tasks());
           const RecordedSamples recorded = record_samples(flight, prepared.front(), &watched);
           const StepTimingReport timing =
-              time_steps(prepared, recorded, flight.scenario().initial_state, flight.model().input_dim(), options);
+              time_steps(prepared, recorded, flight.scenario().initial_state, flight.plant().input_dim(), options);
           report = bench_json(flight, recorded, timing);
           report["table"] = step_timing_table(timing);
         }

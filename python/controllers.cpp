@@ -11,6 +11,7 @@
 #include "controllers/registry.hpp"
 #include "core/helicopter/state.hpp"
 #include "experiment/controller_spec.hpp"
+#include "experiment/plant_registry.hpp"
 #include "experiment/plugins.hpp"
 #include "experiment/result_json.hpp"
 #include "python/arrays.hpp"
@@ -42,6 +43,20 @@ ControllerSpec spec_with(const std::string& text, std::optional<std::string> lab
   }
   check_label(spec.label);
   return spec;
+}
+
+// A registry's entries (controllers, plants): a dict per name, sorted by name.
+template <class Factory>
+py::list registered(const Registry<Factory>& registry) {
+  py::list list;
+  for (const std::string& name : registry.names()) {
+    py::dict entry;
+    entry["name"] = name;
+    entry["description"] = registry.description(name);
+    entry["origin"] = registry.origin(name);
+    list.append(entry);
+  }
+  return list;
 }
 
 }  // namespace
@@ -133,18 +148,11 @@ void bind_controllers(py::module_& module) {
       "k=[...], l=[...]), designed for the scenario's model and initial state and reset to it. spec may also be "
       "'LABEL=NAME', 'NAME:SETTINGS.yaml' or 'LABEL=NAME:SETTINGS.yaml' (as on the command line).");
 
-  module.def("controllers", [] {
-    const ControllerRegistry& registry = ControllerRegistry::instance();
-    py::list list;
-    for (const std::string& name : registry.names()) {
-      py::dict entry;
-      entry["name"] = name;
-      entry["description"] = registry.description(name);
-      entry["origin"] = registry.origin(name);
-      list.append(entry);
-    }
-    return list;
-  }, "The registered controllers: a dict per controller (name, description, origin)");
+  module.def("controllers", [] { return registered(ControllerRegistry::instance()); },
+             "The registered controllers: a dict per controller (name, description, origin)");
+  module.def("plants", [] { return registered(PlantRegistry::instance()); },
+             "The registered plants besides the helicopter (docs/plants.md): a dict per plant (name, description, "
+             "origin)");
 
   module.def(
       "load_plugin", [](const std::string& library) { load_plugin(library); }, py::arg("library"),

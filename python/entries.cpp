@@ -106,4 +106,12 @@ PreparedController prepare(const Flight& flight, Entry& entry) {
   return entry.spec ? flight.prepare(*entry.spec) : std::move(*entry.python);
 }
 
+Flight flight_of(const std::optional<std::string>& scenario, const std::optional<std::string>& plant,
+                 const std::optional<std::vector<double>>& initial_state, const RunControls& controls) {
+  std::optional<Eigen::VectorXd> x0;
+  if (initial_state)
+    x0 = Eigen::Map<const Eigen::VectorXd>(initial_state->data(), static_cast<Eigen::Index>(initial_state->size()));
+  return Flight::of_scenario_or_plant(scenario.value_or(""), plant.value_or(""), x0, controls);
+}
+
 }  // namespace thetad::python

@@ -4,6 +4,8 @@
 // controls as keywords and the controllers as names, specs or Python objects.
 
 #include <optional>
+#include <string>
+#include <vector>
 
 #include <pybind11/pybind11.h>
 
@@ -33,6 +35,11 @@ Entry entry_of(py::handle controller);
 std::vector<Entry> entries_of(const py::sequence& controllers);
 
 ControllerSpec& spec_of(Entry& entry);
+
+// The flight of `scenario` (a file or a shipped name; a file may name a plant) or of the registered
+// `plant` from `initial_state` (its own when none): Flight::of_scenario_or_plant.
+Flight flight_of(const std::optional<std::string>& scenario, const std::optional<std::string>& plant,
+                 const std::optional<std::vector<double>>& initial_state, const RunControls& controls);
 
 // The entry's controller for `flight`: built from its spec, or the Python object itself (moved out
 // of the entry).

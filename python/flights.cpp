@@ -83,8 +83,10 @@ void bind_flights(py::module_& module) {
 
   module.def(
       "run",
-      [](const std::string& scenario, py::handle controller, std::optional<std::string> label, py::object progress,
+      [](const std::optional<std::string>& scenario, py::handle controller, const std::optional<std::string>& plant,
+         const std::optional<std::vector<double>>& initial_state, std::optional<std::string> label, py::object progress,
          const py::kwargs& controls) {
+        if (controller.is_none()) throw py::type_error("run: give the controller to fly");
         const RunControls parsed = run_controls(controls);
         Entry entry = entry_of(controller);
         if (label) spec_of(entry).label = *label;
@@ -94,17 +96,20 @@ void bind_flights(py::module_& module) {
         RunResult result;
         {
           py::gil_scoped_release unlocked;
-          const Flight flight(scenario, parsed);
+          const Flight flight = flight_of(scenario, plant, initial_state, parsed);
           prepared = prepare(flight, entry);
           result = flight.fly(prepared, nullptr, {}, observer.hook(spec_of(entry).label, flight.settings().duration));
         }
         observer.finished(result.spec.label, result.summary.end_time);
         return result;
       },
-      py::arg("scenario"), py::arg("controller"), py::kw_only(), py::arg("label") = py::none(),
+      py::arg("scenario") = py::none(), py::arg("controller") = py::none(), py::kw_only(),
+      py::arg("plant") = py::none(), py::arg("initial_state") = py::none(), py::arg("label") = py::none(),
       py::arg("progress") = py::none(),
       "Flies `controller` (a registered name or spec string, thetad.controller(...), or a thetad.Controller "
-      "subclass instance) through `scenario` (a file or a shipped scenario's name). Run controls as keywords: "
+      "subclass instance) through `scenario` (a file or a shipped scenario's name; a file may name a plant, "
+      "docs/plants.md), or regulates the registered `plant` (thetad.plants()) from `initial_state` (its own when "
+      "None; then duration_s is needed). Run controls as keywords: "
       "seed, duration_s, dt_s, log_every, summary_only, timing, ideal, the disturbance switches, actuator_limits and "
       "anti_windup (duration and dt, the earlier names, still work). progress: None or progress(t, duration), "
       "called with the simulated seconds at most 10 times a second and once at the end. Ctrl-C stops the flight "
@@ -112,14 +117,17 @@ void bind_flights(py::module_& module) {
 
   module.def(
       "compare",
-      [](const std::string& scenario, const py::sequence& controllers, py::object progress, const py::kwargs& controls) {
+      [](const std::optional<std::string>& scenario, const std::optional<py::sequence>& controllers,
+         const std::optional<std::string>& plant, const std::optional<std::vector<double>>& initial_state,
+         py::object progress, const py::kwargs& controls) {
+        if (!controllers) throw py::type_error("compare: give the controllers to fly");
         const RunControls parsed = run_controls(controls);
-        std::vector<Entry> entries = entries_of(controllers);
+        std::vector<Entry> entries = entries_of(*controllers);
         std::vector<PreparedController> prepared;
         TaskObserver observer(std::move(progress));
         std::vector<RunResult> results;
         py::gil_scoped_release unlocked;
-        const Flight flight(scenario, parsed);
+        const Flight flight = flight_of(scenario, plant, initial_state, parsed);
         for (Entry& entry : entries) prepared.push_back(prepare(flight, entry));
         for (PreparedController& controller : prepared) {
           const auto observe = observer.hook(controller.spec.label, flight.settings().duration);
@@ -129,8 +137,10 @@ void bind_flights(py::module_& module) {
         }
         return results;
       },
-      py::arg("scenario"), py::arg("controllers"), py::kw_only(), py::arg("progress") = py::none(),
-      "The same flight (same seed: same perturbed plant and noise) for each controller, in order: a list of "
+      py::arg("scenario") = py::none(), py::arg("controllers") = py::none(), py::kw_only(),
+      py::arg("plant") = py::none(), py::arg("initial_state") = py::none(), py::arg("progress") = py::none(),
+      "The same flight (same seed: same perturbed plant and noise; `scenario`, or `plant` and `initial_state` as "
+      "for run) for each controller, in order: a list of "
       "RunResult. Labels must differ ('paper=theta-d', thetad.controller(..., label=...)). progress and Ctrl-C "
       "as for run, progress starting anew for each controller.");
 

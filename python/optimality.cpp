@@ -75,7 +75,14 @@ void bind_optimal(py::module_& module) {
         {
           py::gil_scoped_release unlocked;
           const Flight flight(scenario, controls);
-          optimality_problem(flight, options);  // a segment off the grid fails before the controllers are built
+          // A segment off the grid fails before the controllers are built.
+          if (optimality_problem(flight, options).finite_differences) {
+            py::gil_scoped_acquire locked;
+            const std::string warning = "the plant " + flight.provenance().plant +
+                                        " gives no Jacobian (SdcPlant::jacobian): the optimum's derivatives are "
+                                        "central differences of f";
+            if (PyErr_WarnEx(PyExc_RuntimeWarning, warning.c_str(), 1) < 0) throw py::error_already_set();
+          }
           std::vector<PreparedController> prepared;
           for (Entry& entry : entries) prepared.push_back(prepare(flight, entry));
           if (out) prepare_output_folder(*out);

@@ -270,9 +270,52 @@ void read_simulation(const YAML::Node& root, Scenario& scenario) {
   check_flight_length(Settings(root), simulation, scenario);
 }
 
+// Refuses the first key of `block` that is among `helicopter_only`, saying why a plant has no use for it.
+void refuse_helicopter_fields(const Settings& block, std::initializer_list<std::string_view> helicopter_only,
+                              const std::string& plant) {
+  for (const std::string_view key : helicopter_only) {
+    if (block.has(std::string(key)))
+      throw block.error(std::string(key), "the helicopter's; the plant " + plant +
+                                              " flies without disturbances, actuator limits or trajectory, regulated "
+                                              "to the origin (docs/plants.md)");
+  }
+}
+
+// A file that names a plant: its settings, initial state and duration, and the simulation fields
+// that mean the same for every plant.
+Scenario read_plant_scenario(const YAML::Node& root, const std::string& source) {
+  const Settings top(root);
+  Scenario scenario;
+  scenario.source = source;
+  scenario.plant = top.string("plant", "");
+  if (scenario.plant.empty()) throw top.error("plant", "must name a registered plant (thetad list)");
+  refuse_helicopter_fields(top, {"phases"}, scenario.plant);
+  top.allow_only({"name", "description", "plant", "plant_settings", "duration", "initial_state", "simulation"});
+  scenario.name = top.string("name", std::filesystem::path(source).stem().string());
+  scenario.description = top.string("description", "");
+  scenario.duration = positive(top, "duration");
+  if (top.has("plant_settings")) {
+    if (!root["plant_settings"].IsMap()) throw top.error("plant_settings", "expected a map of the plant's settings");
+    scenario.plant_settings = root["plant_settings"];
+  }
+  if (top.has("initial_state")) {
+    const std::vector<double> x0 = top.list("initial_state", {});
+    if (x0.empty()) throw top.error("initial_state", "expected the plant's initial state, one number per state");
+    scenario.initial_state = Eigen::Map<const Eigen::VectorXd>(x0.data(), static_cast<Eigen::Index>(x0.size()));
+  }
+  const Settings simulation(child(root, "simulation"), "simulation");
+  refuse_helicopter_fields(simulation,
+                           {"actuator_limits", "anti_windup", "disturbances", "model", "wind", "sensor_noise", "servos",
+                            "computer"},
+                           scenario.plant);
+  read_simulation(root, scenario);
+  return scenario;
+}
+
 Scenario read_scenario(const YAML::Node& root, const std::string& source) {
   if (!root.IsMap()) throw SettingsError("scenario", "expected a map of fields", root.Mark());
   const Settings top(root);
+  if (top.has("plant")) return read_plant_scenario(root, source);
   top.allow_only({"name", "description", "duration", "initial_state", "phases", "simulation"});
 
   Scenario scenario;

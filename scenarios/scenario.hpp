@@ -6,6 +6,7 @@
 #include <string>
 
 #include <Eigen/Core>
+#include <yaml-cpp/yaml.h>
 
 #include "core/helicopter/model_options.hpp"
 #include "core/sim/noise.hpp"
@@ -20,12 +21,20 @@ namespace thetad {
 // by the file keeps thetad's defaults: the paper's disturbances, the X-Cell's actuator limits
 // (sim::SimulationSettings{}), the resolved model preset. The paper-literal preset flies without
 // actuator limits unless the file asks for them.
+//
+// A file may name a registered plant instead (`plant: tora`, docs/plants.md): it then says the
+// plant's settings, its initial state and the duration, and the flight regulates it to the origin
+// with neither disturbances nor actuator limits; what only the helicopter has is refused by name.
 struct Scenario {
   std::string name;
   std::string description;
   std::string source;  // the file it was read from ("" when parsed from text)
   double duration = 0.0;  // s; equals the end of the last phase
-  // The 18-state xa(t0); by default at rest on the ground, level, s = 1 (docs/model.md §8.1).
+  // The plant registry's name of the plant flown (experiment/plant_registry.hpp); empty: the helicopter.
+  std::string plant;
+  YAML::Node plant_settings;  // the plant's settings block (undefined: its defaults)
+  // The 18-state xa(t0); by default at rest on the ground, level, s = 1 (docs/model.md §8.1). For
+  // a plant, its initial state as the file gives it; empty: the plant's own.
   Eigen::VectorXd initial_state;
   PhasedTrajectory trajectory;
   heli::ModelOptions model_options;

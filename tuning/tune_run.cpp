@@ -100,8 +100,7 @@ Parameterization parameterization(const TuneOptions& a, const TuningReport& repo
 // The record of --record when that file exists (it must be of this scenario); nothing otherwise.
 std::optional<TuningRecord> reused_record(const TuneOptions& a, const Flight& flight) {
   if (a.record.empty() || !std::filesystem::exists(a.record)) return std::nullopt;
-  const heli::Helicopter& model = flight.model();
-  TuningRecord record = read_record(a.record, model.state_dim(), model.input_dim());
+  TuningRecord record = read_record(a.record, flight.plant().state_dim(), flight.plant().input_dim());
   if (record.scenario != flight.scenario().name)
     throw Error(a.record.string() + ": recorded on scenario '" + record.scenario + "', not '" + flight.scenario().name +
                 "' (delete it or name another --record file to re-fly)");

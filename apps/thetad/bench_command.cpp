@@ -16,6 +16,7 @@ CLI::App* add_bench_command(CLI::App& app, BenchArguments& arguments) {
   arguments.flight.scenario = "scenario-1";
   // It writes no run: no log, summary or timing switches (they would be accepted and ignored).
   add_flight_options(*bench, arguments.flight, false, false);
+  add_plant_options(*bench, arguments.flight);
   bench->get_option("--out")->description("JSON file for the figures (optional)");
   bench->add_option("--controllers", arguments.controllers,
                     "Comma-separated NAME, LABEL=NAME or LABEL=NAME:SETTINGS.yaml, or all (every registered controller but the examples); the first flies the recording")
@@ -43,7 +44,10 @@ int run_bench(const BenchArguments& arguments) {
   const FlightOptions& options = arguments.flight;
   RunControls controls = run_controls(options);
   controls.summary_only = true;
-  const Flight flight(options.scenario, controls);
+  // --plant without --scenario flies the plant, not the default scenario-1.
+  FlightOptions chosen = options;
+  if (!options.plant.empty() && options.scenario == "scenario-1") chosen.scenario.clear();
+  const Flight flight = flight_of(chosen, controls);
   const std::vector<ControllerSpec> specs = parse_controller_specs(arguments.controllers, options.settings);
   std::vector<PreparedController> controllers;
   for (const auto& spec : specs) controllers.push_back(flight.prepare(spec));
@@ -53,7 +57,7 @@ int run_bench(const BenchArguments& arguments) {
   const RecordedSamples samples = record_samples(flight, controllers.front(), &progress);
 
   const StepTimingReport report =
-      time_steps(controllers, samples, flight.scenario().initial_state, flight.model().input_dim(), arguments.timing);
+      time_steps(controllers, samples, flight.scenario().initial_state, flight.plant().input_dim(), arguments.timing);
   std::printf("%s: states recorded along %g s flown by %s\n", flight.scenario().name.c_str(),
               flight.settings().duration, samples.recorded_with.c_str());
   std::fputs(step_timing_table(report).c_str(), stdout);

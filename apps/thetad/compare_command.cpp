@@ -15,7 +15,8 @@ CLI::App* add_compare_command(CLI::App& app, CompareArguments& arguments) {
   auto* compare = app.add_subcommand(
       "compare", "Fly several controllers through a scenario on the same seed; print a table, write "
                  "<out>/comparison.json. Exit code 0: all completed, 3: any diverged or failed");
-  add_flight_options(*compare, arguments.flight);
+  add_flight_options(*compare, arguments.flight, false);
+  add_plant_options(*compare, arguments.flight);
   compare->add_option("--controllers", arguments.controllers,
                       "Comma-separated NAME, LABEL=NAME or LABEL=NAME:SETTINGS.yaml "
                       "(e.g. paper=theta-d,tuned=theta-d:out/tune/theta-d-tuned.yaml,sdre), or all (every registered "
@@ -29,7 +30,7 @@ CLI::App* add_compare_command(CLI::App& app, CompareArguments& arguments) {
 
 int run_compare(const CompareArguments& arguments) {
   const FlightOptions& options = arguments.flight;
-  const Flight flight(options.scenario, run_controls(options));
+  const Flight flight = flight_of(options, run_controls(options));
   if (arguments.controllers.empty() == arguments.controllers_file.empty())
     throw Error("thetad compare needs --controllers or --controllers-file (one of them)");
   const std::vector<ControllerSpec> specs = arguments.controllers_file.empty()

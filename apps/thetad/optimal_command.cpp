@@ -116,7 +116,11 @@ int run_optimal(const OptimalArguments& arguments) {
   options.warm_start = arguments.warm_start;
   options.solver.ipopt.max_iterations = arguments.max_iterations;
   options.solver.ipopt.tolerance = arguments.tolerance;
-  optimality_problem(flight, options);  // a horizon or interval off the grid fails before the controllers are built
+  // A horizon or interval off the grid fails before the controllers are built.
+  if (optimality_problem(flight, options).finite_differences)
+    std::fprintf(stderr, "warning: the plant %s gives no Jacobian (SdcPlant::jacobian): the optimum's derivatives are "
+                         "central differences of f, slower and exact to about 1e-10 relative only\n",
+                 flight.provenance().plant.c_str());
   std::vector<PreparedController> controllers;
   for (const auto& spec : parse_controller_specs(arguments.controllers, arguments.settings))
     controllers.push_back(flight.prepare(spec));

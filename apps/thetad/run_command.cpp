@@ -106,24 +106,6 @@ int run_replay(const RunArguments& arguments) {
   return replayed.result.completed() ? kExitCompleted : kExitDiverged;
 }
 
-// thetad run --plant: the controller on a registered plant (a plug-in's), from its initial state
-// (or --initial-state), regulating to the origin.
-int run_plant(const RunArguments& arguments) {
-  if (!arguments.flight.scenario.empty()) throw Error("thetad run: --plant and --scenario exclude each other");
-  std::optional<Eigen::VectorXd> initial_state;
-  if (!arguments.initial_state.empty())
-    initial_state = Eigen::Map<const Eigen::VectorXd>(arguments.initial_state.data(),
-                                                      static_cast<Eigen::Index>(arguments.initial_state.size()));
-  const Flight flight = Flight::of_plant(arguments.plant, initial_state, run_controls(arguments.flight));
-  PreparedController prepared = flight.prepare(parse_controller_specs({arguments.controller}, arguments.flight.settings).front());
-  prepare_output_folder(arguments.flight.out);
-  Progress progress(Progress::mode_for_stderr(arguments.flight.quiet));
-  const RunResult result = flight.fly(prepared, &progress);
-  const RunFiles files = write_run_files(result, arguments.flight.out);
-  print_summary(result, flight, files);
-  return result.completed() ? kExitCompleted : kExitDiverged;
-}
-
 }  // namespace
 
 std::uint64_t parse_seed(const std::string& text, const std::string& option) {
@@ -218,6 +200,24 @@ int jobs_or_every_core(int jobs) {
   return jobs > 0 ? jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 }
 
+void add_plant_options(CLI::App& command, FlightOptions& options) {
+  command.add_option("--plant", options.plant,
+                     "Fly a registered plant (thetad list; a plug-in's too) instead of a scenario, regulated to the "
+                     "origin; needs --duration. A scenario file may name a plant instead (docs/plants.md)");
+  command.add_option("--initial-state", options.initial_state, "With --plant: the initial state (comma-separated)")
+      ->delimiter(',');
+}
+
+Flight flight_of(const FlightOptions& options, const RunControls& controls) {
+  if (!options.scenario.empty() && !options.plant.empty()) throw Error("--plant and --scenario exclude each other");
+  if (options.scenario.empty() && options.plant.empty()) throw Error("give --scenario or --plant");
+  std::optional<Eigen::VectorXd> initial_state;
+  if (!options.initial_state.empty())
+    initial_state = Eigen::Map<const Eigen::VectorXd>(options.initial_state.data(),
+                                                      static_cast<Eigen::Index>(options.initial_state.size()));
+  return Flight::of_scenario_or_plant(options.scenario, options.plant, initial_state, controls);
+}
+
 RunControls run_controls(const FlightOptions& options) {
   RunControls controls = options.controls;
   if (options.no_timing) controls.timing = false;
@@ -231,11 +231,7 @@ CLI::App* add_run_command(CLI::App& app, RunArguments& arguments) {
   add_flight_options(*run, arguments.flight, false);
   run->add_option("--controller", arguments.controller,
                   "NAME, LABEL=NAME, NAME:SETTINGS.yaml or LABEL=NAME:SETTINGS.yaml (see thetad list)");
-  run->add_option("--plant", arguments.plant,
-                  "Fly a registered plant of your own (a plug-in's; see thetad list) instead of a scenario; needs "
-                  "--duration");
-  run->add_option("--initial-state", arguments.initial_state, "With --plant: the initial state (comma-separated)")
-      ->delimiter(',');
+  add_plant_options(*run, arguments.flight);
   run->add_option("--replay", arguments.replay,
                   "Fly again the run a result JSON describes, from what it records, and check that the summary "
                   "agrees (exit code 4 when it does not)");
@@ -244,11 +240,11 @@ CLI::App* add_run_command(CLI::App& app, RunArguments& arguments) {
 
 int run_run(const RunArguments& arguments) {
   if (!arguments.replay.empty()) return run_replay(arguments);
-  if (!arguments.plant.empty()) return run_plant(arguments);
-  if (arguments.flight.scenario.empty() || arguments.controller.empty() || arguments.flight.out.empty())
+  if ((arguments.flight.scenario.empty() && arguments.flight.plant.empty()) || arguments.controller.empty() ||
+      arguments.flight.out.empty())
     throw Error("thetad run needs --scenario, --controller and --out (or --replay RESULT.json)");
   // Everything that can be wrong is found before the flight: files, specs, the output folder.
-  const Flight flight(arguments.flight.scenario, run_controls(arguments.flight));
+  const Flight flight = flight_of(arguments.flight, run_controls(arguments.flight));
   PreparedController prepared = flight.prepare(parse_controller_specs({arguments.controller}, arguments.flight.settings).front());
   prepare_output_folder(arguments.flight.out);
 

@@ -22,6 +22,8 @@ inline constexpr int kExitReplayDiffers = 4;
 struct FlightOptions {
   std::string scenario;            // a file, or the name of a shipped scenario
   std::filesystem::path settings;  // empty: every controller with its defaults
+  std::string plant;                  // a registered plant instead of a scenario (add_plant_options)
+  std::vector<double> initial_state;  // for the plant; empty: its own
   RunControls controls;
   bool no_timing = false;
   bool quiet = false;
@@ -37,8 +39,14 @@ std::uint64_t parse_seed(const std::string& text, const std::string& option = "-
 void add_flight_options(CLI::App& command, FlightOptions& options, bool scenario_required = true,
                         bool writes_runs = true);
 
+// Adds --plant and --initial-state: the shorthand for a scenario file that names a plant
+// (docs/plants.md), for the commands that build their flight with flight_of().
+void add_plant_options(CLI::App& command, FlightOptions& options);
+
 // The run controls the options ask for.
 RunControls run_controls(const FlightOptions& options);
+// The flight of --scenario or --plant (one of them) with `controls`.
+Flight flight_of(const FlightOptions& options, const RunControls& controls);
 
 // --controllers (required): specs parsed by parse_controller_specs, `all` included.
 CLI::Option* add_controllers_option(CLI::App& command, std::vector<std::string>& controllers);
@@ -51,8 +59,6 @@ struct RunArguments {
   FlightOptions flight;
   std::string controller;
   std::filesystem::path replay;
-  std::string plant;                  // a registered plant (a plug-in's) instead of a scenario
-  std::vector<double> initial_state;  // for --plant; empty: the plant's own
 };
 CLI::App* add_run_command(CLI::App& app, RunArguments& arguments);
 // thetad run: one controller, <out>/<label>.csv and .json, a summary paragraph on stdout.

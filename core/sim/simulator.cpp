@@ -132,6 +132,12 @@ std::vector<LogColumn> log_schema(const SdcPlant& plant, const Disturbances& dis
   return columns;
 }
 
+LogLayout log_layout(const SdcPlant& plant) {
+  const auto state = static_cast<Eigen::Index>(1 + plant.tracked_states().size());
+  const Eigen::Index n = plant.state_dim(), m = plant.input_dim();
+  return {state, state + n, state + 2 * n, state + 2 * n + m};
+}
+
 RunResult simulate(ControlLaw& law, Disturbances& disturbances, const ReferenceTrajectory& reference,
                    const Eigen::VectorXd& x0, const SimulationSettings& settings,
                    const std::function<void(double t)>& progress, DeviationCost* deviation) {

@@ -29,6 +29,13 @@ struct RunResult {
 // come before the certificates: computation_latency_s and sample_skipped.
 std::vector<LogColumn> log_schema(const SdcPlant& plant, const Disturbances& disturbances,
                                   const std::vector<CertificateColumn>& certificates = {}, bool computer = false);
+// Where log_schema() puts the plant's blocks: the first column of the true state, of the measured
+// state, of the commanded input and of the applied input.
+struct LogLayout {
+  Eigen::Index state, measured, command, applied;
+};
+LogLayout log_layout(const SdcPlant& plant);
+
 // The last column of every log: the control step's wall time in flight (docs/glossary.md "Compute
 // time"), which the files of runs flown without timing leave out. Result files before format_version 4
 // named it compute_ns (experiment/result_names.hpp).

@@ -57,6 +57,7 @@ from ._thetad import (  # noqa: E402  (after the data folder is known)
     lqr,
     lyap,
     optimal,
+    plants,
     run,
     state_names,
     tune,
@@ -73,5 +74,5 @@ __all__ = [
     "CampaignReport", "CareResult", "Controller", "DareResult", "DesignDefaults", "Error", "Helicopter", "Linearization",
     "Optimality", "Reference", "RegisteredController", "RunResult", "Trim", "bench", "campaign_report", "campaign_run",
     "care", "compare", "comparison_table", "controller", "controllers", "dare", "dlqr", "input_names", "linearize",
-    "load_plugin", "lqr", "lyap", "optimal", "plot", "run", "state_names", "tune", "uncertainty_draw",
+    "load_plugin", "lqr", "lyap", "optimal", "plants", "plot", "run", "state_names", "tune", "uncertainty_draw",
 ]

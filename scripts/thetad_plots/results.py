@@ -32,6 +32,7 @@ DISPLAY_UNITS = {
     "rad_per_s": ("deg/s", 180.0 / math.pi),
     "N": ("N", 1.0),
     "ns": ("µs", 1e-3),
+    "": ("–", 1.0),  # a plant's dimensionless signals (the RTAC/TORA benchmark's)
 }
 
 # The log's wall-clock column (docs/glossary.md "Compute time"); result files before format_version

@@ -341,8 +341,27 @@ def draw_summary(runs):
     return fig
 
 
-def draw_all(runs):
-    """{file stem: Figure} of every figure of a RunSet."""
+def plant_figures(names):
+    """A plant's own figures (docs/plants.md), from the log's column names: one panel per state (a
+    column the log also has measured, meas_NAME) and one per commanded input (cmd_NAME)."""
+    states = [name for name in names if f"meas_{name}" in names]
+    inputs = [name for name in names if name.startswith("cmd_")]
+    return (TimeFigure("states", "States", tuple(Signal(name, name) for name in states)),
+            TimeFigure("inputs", "Commanded inputs", tuple(Signal(name, name[len("cmd_"):]) for name in inputs)))
+
+
+def is_helicopter(manifest):
+    """Whether the manifest's runs flew the helicopter (its log has the position x_p)."""
+    return any(column["name"] == "x_p" for column in manifest["schema"])
+
+
+def draw_all(runs, figures_of_plant=None):
+    """{file stem: Figure} of every figure of a RunSet: the helicopter's, or with `figures_of_plant`
+    (plant_figures) a plant's time histories and the compute time."""
+    if figures_of_plant is not None:
+        figures = {figure.kind: draw_time_figure(runs, figure) for figure in figures_of_plant}
+        figures["compute_time"] = draw_compute_time(runs)
+        return figures
     figures = {"trajectory_3d": draw_trajectory_3d(runs)}
     for figure in TIME_FIGURES:
         figures[figure.kind] = draw_time_figure(runs, figure)
@@ -360,8 +379,12 @@ def main(argv):
             raise PlotError("usage: plot_run.py MANIFEST.json (written by `thetad plot`)")
         manifest = read_manifest(argv[1])
         style.apply()
-        runs = load(manifest, NEEDED)
-        for stem, fig in draw_all(runs).items():
+        if is_helicopter(manifest):
+            runs, figures = load(manifest, NEEDED), None
+        else:
+            figures = plant_figures([column["name"] for column in manifest["schema"]])
+            runs = load(manifest, ["t", STEP_TIME, *(s.column for f in figures for s in f.signals)])
+        for stem, fig in draw_all(runs, figures).items():
             style.save(fig, os.path.join(manifest["out"], stem), manifest["formats"], manifest["dpi"])
     except PlotError as e:
         print(f"plot_run.py: error: {e}", file=sys.stderr)

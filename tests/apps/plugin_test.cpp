@@ -78,13 +78,13 @@ TEST_F(Plugins, ThePluginPathLoadsFilesAndFolders) {
   EXPECT_THAT(missing.err, HasSubstr("THETAD_PLUGIN_PATH: " + path("nowhere") + " does not exist"));
 }
 
-// A user's plant from a plug-in, flown by θ–D and the SDRE from the command line.
-TEST_F(Plugins, APluginPlantFliesThetaDAndSdreFromTheCommandLine) {
+// A user's plant from a plug-in, flown by θ–D, the SDRE and the LQR from the command line.
+TEST_F(Plugins, APluginPlantFliesThetaDSdreAndLqrFromTheCommandLine) {
   const std::string plugin = std::string("--plugin ") + THETAD_PLANT_PLUGIN;
   const Output list = thetad(plugin + " list");
   ASSERT_EQ(list.status, 0) << list.err;
   EXPECT_THAT(list.out, HasSubstr("plant companion  Duffing-type oscillator"));
-  for (const char* controller : {"theta-d", "sdre"}) {
+  for (const char* controller : {"theta-d", "sdre", "lqr"}) {
     const Output output = thetad(plugin + " run --plant companion --controller " + controller +
                                  " --duration 10 --initial-state 0.8,0.2 --out " + path("plant"));
     ASSERT_EQ(output.status, 0) << output.err;
@@ -109,9 +109,11 @@ TEST_F(Plugins, APluginPlantFliesThetaDAndSdreFromTheCommandLine) {
   const Output without = thetad("run --replay " + path("plant/sdre.json"));
   EXPECT_EQ(without.status, 1);
   EXPECT_THAT(without.err, HasSubstr("the plant 'companion', which no loaded plug-in registers"));
-  const Output bad = thetad(plugin + " run --plant companion --controller lqr --duration 1 --out " + path("plant"));
+  // The LQR designs at the plant's design point; the scheduled one needs the helicopter's trims.
+  const Output bad =
+      thetad(plugin + " run --plant companion --controller lqr-scheduled --duration 1 --out " + path("plant"));
   EXPECT_EQ(bad.status, 1);
-  EXPECT_THAT(bad.err, HasSubstr("lqr: flies only the X-Cell helicopter"));
+  EXPECT_THAT(bad.err, HasSubstr("lqr-scheduled: flies only the X-Cell helicopter"));
   const Output unknown = thetad("run --plant nowhere --controller theta-d --duration 1 --out " + path("plant"));
   EXPECT_EQ(unknown.status, 1);
   EXPECT_THAT(unknown.err, HasSubstr("unknown plant 'nowhere'"));

@@ -95,8 +95,8 @@ TEST(PlantFlight, TheLogAndTheSummaryHaveThePlantsShape) {
 
 TEST(PlantFlight, ControllersThatNeedTheHelicopterAndBadRunsAreClear) {
   const auto plant = std::make_shared<const CompanionPlant>();
-  EXPECT_THAT(testing::error_message([&] { fly(plant, "lqr", Eigen::Vector2d(1, 0), seconds(1.0)); }),
-              HasSubstr("lqr: flies only the X-Cell helicopter"));
+  EXPECT_THAT(testing::error_message([&] { fly(plant, "lqr-scheduled", Eigen::Vector2d(1, 0), seconds(1.0)); }),
+              HasSubstr("lqr-scheduled: flies only the X-Cell helicopter"));
   EXPECT_THAT(testing::error_message([&] { fly(plant, "theta-d", Eigen::Vector3d(1, 0, 0), seconds(1.0)); }),
               HasSubstr("the initial state has 3 entries"));
   EXPECT_THAT(testing::error_message([&] { fly(plant, "theta-d", Eigen::Vector2d(1, 0), RunControls{}); }),

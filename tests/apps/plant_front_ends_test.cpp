@@ -1,0 +1,183 @@
+// The RTAC/TORA benchmark (docs/plants.md) through every front end of the command line, as a user
+// runs them: the shipped scenario files that name the plant (scenarios/tora/), flown by θ–D, the
+// SDRE and the LQR at the plant's design point, on short horizons; and the errors of a plant's
+// scenario file, each naming the file, the field and the reason.
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "campaigns/campaign.hpp"
+#include "campaigns/campaign_store.hpp"
+#include "experiment/scenario_files.hpp"
+#include "tests/apps/run_thetad.hpp"
+#include "tests/scratch_directory.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+using thetad::testing::Output;
+
+constexpr const char* kControllers = " --controllers theta-d,sdre,lqr";
+
+class PlantFrontEnds : public ::testing::Test {
+ protected:
+  Output thetad(const std::string& arguments) const { return thetad::testing::run_thetad(dir_, arguments); }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  nlohmann::json read(const std::string& file) const {
+    return nlohmann::json::parse(thetad::testing::read_text(dir_ / file));
+  }
+  // A scenario file `name` in the scratch folder with `text`; returns its path.
+  std::string scenario(const std::string& name, const std::string& text) const {
+    std::ofstream(dir_ / name) << text;
+    return path(name);
+  }
+
+  thetad::testing::ScratchDirectory scratch_{"thetad_plant_front_ends_test"};
+  const fs::path dir_ = scratch_.path();
+};
+
+TEST_F(PlantFrontEnds, CompareFliesTheShippedScenarioInThePlantsColumnsAndPlotDrawsThem) {
+  const Output output = thetad("compare --scenario tora/regulation" + std::string(kControllers) +
+                               " --duration 2 --no-timing --quiet --out " + path("compare"));
+  ASSERT_EQ(output.status, 0) << output.err;
+  EXPECT_THAT(output.out, HasSubstr("tora-regulation (2 s, seed 1, ideal"));
+  for (const std::string label : {"theta-d", "sdre", "lqr"}) {
+    const nlohmann::json result = read("compare/" + label + ".json");
+    EXPECT_EQ(result["status"], "completed") << label;
+    EXPECT_EQ(result["controller_samples"], 2000) << label;
+    EXPECT_EQ(result["provenance"]["plant"], "tora") << label;
+    EXPECT_EQ(result["provenance"]["scenario"]["name"], "tora-regulation") << label;
+    EXPECT_EQ(result["provenance"]["initial_state"], nlohmann::json::array({1.0, 0.0, 0.0, 0.0})) << label;
+    const std::string csv = thetad::testing::read_text(dir_ / "compare" / (label + ".csv"));
+    EXPECT_EQ(csv.substr(0, csv.find('\n')),
+              "t_s,xi,xi_dot,theta_rad,theta_dot_rad_per_s,meas_xi,meas_xi_dot,meas_theta_rad,"
+              "meas_theta_dot_rad_per_s,cmd_torque,app_torque");
+  }
+  // --plant is the shorthand of the same flight: the same run, bit for bit.
+  const Output shorthand = thetad("compare --plant tora --initial-state 1,0,0,0 --controllers sdre --duration 2 "
+                                  "--no-timing --quiet --out " + path("shorthand"));
+  ASSERT_EQ(shorthand.status, 0) << shorthand.err;
+  EXPECT_EQ(read("shorthand/sdre.json")["cost"], read("compare/sdre.json")["cost"]);
+
+  const Output plot = thetad("plot --in " + path("compare") + " --out " + path("figures"));
+  ASSERT_EQ(plot.status, 0) << plot.err;
+  for (const char* figure : {"states.png", "inputs.png", "compute_time.png"})
+    EXPECT_TRUE(fs::exists(dir_ / "figures" / figure)) << figure << "\n" << plot.out;
+  EXPECT_FALSE(fs::exists(dir_ / "figures" / "trajectory_3d.png"));
+}
+
+TEST_F(PlantFrontEnds, ARunOfAPlantsScenarioReplaysBitForBit) {
+  const Output run = thetad("run --scenario tora/strong-coupling --controller theta-d --duration 2 --quiet --out " +
+                            path("run"));
+  ASSERT_EQ(run.status, 0) << run.err;
+  EXPECT_THAT(run.out, HasSubstr("theta-d on tora-strong-coupling (2 s, seed 1, ideal"));
+  EXPECT_EQ(read("run/theta-d.json")["provenance"]["initial_state"], nlohmann::json::array({1.5, 0.0, 0.0, 0.0}));
+  const Output again = thetad("run --replay " + path("run/theta-d.json"));
+  EXPECT_EQ(again.status, 0) << again.err;
+  EXPECT_THAT(again.out, HasSubstr("bit for bit"));
+}
+
+TEST_F(PlantFrontEnds, BenchTimesTheStepsOnStatesOfThePlant) {
+  const Output output = thetad("bench --scenario tora/regulation" + std::string(kControllers) +
+                               " --duration 1 --samples 50 --segments 5 --repetitions 2 --warmup 0 --cpu -2 --quiet "
+                               "--out " + path("bench.json"));
+  ASSERT_EQ(output.status, 0) << output.err;
+  EXPECT_THAT(output.out, HasSubstr("tora-regulation: states recorded along 1 s flown by theta-d"));
+  EXPECT_TRUE(fs::exists(dir_ / "bench.json"));
+}
+
+TEST_F(PlantFrontEnds, ACampaignSweepsBothScenariosAndTheHorizon) {
+  std::ofstream(dir_ / "tora.yaml") << "campaign: tora-short\nscenarios: [tora/regulation, tora/strong-coupling]\n"
+                                       "controllers:\n  - {controller: theta-d}\n  - {controller: sdre}\n"
+                                       "  - {controller: lqr}\ndraws: {count: 1, base_seed: 1}\n"
+                                       "sweep:\n  grid:\n    duration_s: [0.5, 1]\n";
+  const Output output = thetad("campaign run " + path("tora.yaml") + " --jobs 2 --no-timing --quiet --out " +
+                               path("campaign"));
+  ASSERT_EQ(output.status, 0) << output.err;
+  const std::vector<thetad::RunRecord> records = thetad::CampaignStore(dir_ / "campaign" / "campaign.sqlite").records();
+  ASSERT_EQ(records.size(), 12u);
+  const auto& columns = thetad::metric_columns();
+  for (const auto& record : records) {
+    EXPECT_TRUE(record.completed()) << record.label << " " << record.reason;
+    for (std::size_t i = 0; i < columns.size(); ++i) {
+      // The cost is the plant's; the helicopter's tracking and input columns are empty (NULL).
+      if (columns[i].name == "cost") {
+        EXPECT_GT(record.metrics[i], 0.0);
+      }
+      if (columns[i].name == "rms_command_T_mr_N" || columns[i].name == "rms_error_m") {
+        EXPECT_TRUE(std::isnan(record.metrics[i]));
+      }
+    }
+  }
+  // The shipped campaign reads: both scenarios, three controllers, three horizons.
+  EXPECT_EQ(thetad::load_campaign(thetad::find_campaign("plants/tora")).run_count(), 18);
+}
+
+TEST_F(PlantFrontEnds, OptimalComparesWithTheOptimumWithThePlantsJacobianOrDifferences) {
+  const Output output = thetad("optimal --scenario tora/regulation" + std::string(kControllers) +
+                               " --horizon 1 --cost j --control-interval 0.1 --no-timing --quiet --out " +
+                               path("optimal"));
+  ASSERT_EQ(output.status, 0) << output.err << output.out;
+  EXPECT_THAT(output.err, ::testing::Not(HasSubstr("no Jacobian")));
+  const nlohmann::json report = read("optimal/optimality.json");
+  EXPECT_TRUE(report["converged"].get<bool>());
+  for (const auto& controller : report["controllers"])
+    EXPECT_GT(controller["gap_percent"].get<double>(), -1e-3) << controller["label"];
+
+  // The companion oscillator of the test plug-in gives no Jacobian: central differences, said.
+  const std::string companion =
+      scenario("companion.yaml", "plant: companion\ninitial_state: [0.8, 0.2]\nduration: 1\n");
+  const Output differences = thetad(std::string("--plugin ") + THETAD_PLANT_PLUGIN + " optimal --scenario " +
+                                    companion + " --controllers sdre --horizon 1 --cost j --control-interval 0.1 "
+                                    "--no-timing --quiet --out " + path("differences"));
+  ASSERT_EQ(differences.status, 0) << differences.err << differences.out;
+  EXPECT_THAT(differences.err, HasSubstr("warning: the plant companion gives no Jacobian"));
+}
+
+TEST_F(PlantFrontEnds, TuneFitsThetaDsSeriesOnThePlant) {
+  const Output output = thetad("tune --scenario tora/regulation --duration 2 --max-evaluations 30 --no-validation "
+                               "--quiet --out " + path("tune"));
+  ASSERT_EQ(output.status, 0) << output.err;
+  ASSERT_TRUE(fs::exists(dir_ / "tune" / "theta-d-tuned.yaml"));
+  const Output tuned = thetad("run --scenario tora/regulation --controller theta-d:" + path("tune/theta-d-tuned.yaml") +
+                              " --duration 2 --quiet --out " + path("tuned"));
+  EXPECT_EQ(tuned.status, 0) << tuned.err;
+}
+
+TEST_F(PlantFrontEnds, APlantsScenarioFileSaysWhatDoesNotApplyToAPlant) {
+  const std::string head = "plant: tora\nduration: 2\n";
+  const struct {
+    std::string file, text, where, message;
+  } cases[] = {
+      {"wind.yaml", head + "simulation:\n  disturbances: {wind_gust: on}\n", "wind.yaml:4:",
+       "field 'simulation.disturbances': the helicopter's; the plant tora flies without"},
+      {"phases.yaml", head + "phases:\n  - {type: hold, time: [0, 2]}\n", "phases.yaml:4:",
+       "field 'phases': the helicopter's"},
+      {"size.yaml", head + "initial_state: [1, 0]\n", "size.yaml (plant tora): ",
+       "field 'initial_state' has 2 entries, the plant 4 states"},
+      {"unknown.yaml", "plant: nowhere\nduration: 2\n", "unknown.yaml: ",
+       "field 'plant': unknown plant 'nowhere' (known: "},
+      {"epsilon.yaml", head + "plant_settings: {epsilon: 2}\n", "epsilon.yaml: ",
+       "field 'plant_settings': tora: epsilon must lie in (0, 1)"},
+      {"typo.yaml", head + "plant_settings: {epsilom: 0.2}\n", "typo.yaml:3:18: ", "field 'epsilom': unknown field"},
+  };
+  for (const auto& c : cases) {
+    const Output output =
+        thetad("run --scenario " + scenario(c.file, c.text) + " --controller sdre --quiet --out " + path("out"));
+    EXPECT_EQ(output.status, 1) << c.file;
+    EXPECT_THAT(output.err, ::testing::AllOf(HasSubstr(c.where), HasSubstr(c.message))) << c.file;
+  }
+  const Output course = thetad("run --scenario tora/regulation --controller sdre --set course=10 --out " + path("out"));
+  EXPECT_EQ(course.status, 1);
+  EXPECT_THAT(course.err,
+              HasSubstr("(plant tora): initial offsets, speed scales and courses apply to the helicopter's"));
+}
+
+}  // namespace
