@@ -7,21 +7,14 @@
 #include <vector>
 
 #include "experiment/run_controls.hpp"
+#include "experiment/run_settings.hpp"
 
 namespace thetad {
 
-// The conditions a campaign may fix or sweep. Each factor is one documented override of a run
-// (RunControls), so a campaign's cell means what `thetad run` with the same override means.
-struct Factor {
-  std::string_view name;
-  std::string_view unit;         // "" for scales
-  std::string_view description;  // for docs and --help
-  double min, max;               // the accepted range (RunControls checks the rest, e.g. dt divides the period)
-  void (*apply)(double value, RunControls& controls);
-  // A factor that picks one of several names: their list, space-separated; a campaign file may
-  // write a name for its position in the list (0, 1, ...).
-  std::string_view choices = {};
-};
+// The conditions a campaign may fix or sweep: the run settings with a factor column
+// (experiment/run_settings.hpp), so a campaign's cell means what `thetad run` with the same
+// override means. A factor's value is a number (a choice's position, a switch's 0 or 1).
+using Factor = RunSetting;
 
 // Every factor, in the order the runs table lists them.
 const std::vector<Factor>& factors();

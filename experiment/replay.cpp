@@ -1,7 +1,6 @@
 #include "experiment/replay.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <limits>
 #include <iterator>
@@ -10,13 +9,13 @@
 
 #include "controllers/registry.hpp"
 #include "core/error.hpp"
-#include "experiment/disturbance_json.hpp"
 #include "experiment/flight.hpp"
 #include "experiment/result_json.hpp"
 #include "experiment/result_names.hpp"
 #include "experiment/sha256.hpp"
 #include "experiment/json_file.hpp"
 #include "experiment/plant_registry.hpp"
+#include "experiment/run_settings.hpp"
 
 namespace thetad {
 
@@ -58,49 +57,12 @@ double relative_difference(const Json& recorded, const Json& replayed) {
   return largest;
 }
 
-RunControls controls_of(const Json& settings, const Json& provenance) {
-  RunControls controls;
-  controls.seed = provenance.at("seed").get<std::uint64_t>();
-  const auto vector = [](const Json& entries) { return Eigen::Vector3d(entries.get<std::array<double, 3>>().data()); };
-  if (provenance.contains("initial_offset_m")) controls.initial_offset = vector(provenance["initial_offset_m"]);
-  if (provenance.contains("initial_attitude_offset_rad"))
-    controls.initial_attitude_offset = vector(provenance["initial_attitude_offset_rad"]);
-  if (provenance.contains("trajectory_speed_scale"))
-    controls.speed_scale = provenance["trajectory_speed_scale"].get<double>();
-  if (provenance.contains("course_rad")) controls.course = provenance["course_rad"].get<double>();
-  controls.duration = settings.at("duration_s").get<double>();
-  controls.dt = settings.at("dt_s").get<double>();
-  controls.log_every = settings.at("log_every").get<int>();
-  controls.summary_only = settings.at("summary_only").get<bool>();
-  controls.timing = settings.at("timing").get<bool>();
-  controls.parameter_uncertainty = settings.at("parameter_uncertainty").get<bool>();
-  controls.wind_gust = settings.at("wind_gust").at("enabled").get<bool>();
-  const Json& noise = settings.at("noise");
-  controls.measurement_noise = noise.at("measurement").get<bool>();
-  controls.actuator_noise = noise.at("actuator").get<bool>();
-  controls.wind_noise = noise.at("wind_component").get<bool>();
-  controls.induced_velocity_noise = noise.at("induced_velocity").get<bool>();
-  // Results written before the actuator limits existed flew without them.
-  controls.actuator_limits = settings.contains("actuator_limits") && settings["actuator_limits"].at("enabled").get<bool>();
-  // Results written before the anti-windup existed flew without it.
-  controls.anti_windup = settings.contains("actuator_limits") && settings["actuator_limits"].value("anti_windup", false);
-  // Files written before the disturbance scales existed flew at the paper's strengths.
-  controls.uncertainty_scale = settings.value("uncertainty_scale", 1.0);
-  if (settings.contains("parameter_deviations"))
-    controls.parameter_deviations = settings["parameter_deviations"].get<std::vector<double>>();
-  controls.noise_scale = noise.value("scale", 1.0);
-  controls.gust_scale = settings.value("gust_scale", 1.0);
-  controls.gust_onset = settings.value("gust_onset_s", 0.0);
-  controls.beyond_paper = read_beyond_paper(settings);
-  return controls;
-}
-
 // The flight a result recorded: from the scenario text it recorded (version 2; a plant's scenario
 // file too), or else a plant's flight without a scenario file (`--plant`) from the registry, or else
 // the helicopter's scenario from its file, which must still be the recorded bytes (version 1).
-Flight recorded_flight(const Json& recorded, const std::string& file) {
+Flight recorded_flight(const Json& recorded, int version, const std::string& file) {
   const Json& provenance = recorded.at("provenance");
-  const RunControls controls = controls_of(recorded.at("settings"), provenance);
+  const RunControls controls = recorded_controls(recorded, version);
   const std::string plant = provenance.value("plant", "helicopter");
   if (plant != "helicopter" && !PlantRegistry::instance().contains(plant))
     throw Error(file + ": the run flew the plant '" + plant + "', which no loaded plug-in registers (load the " +
@@ -134,7 +96,7 @@ Replay replay(const std::filesystem::path& result_file, Progress* progress) {
   try {
     const int version = run_format_version(file, result_file.string());
     const Json recorded = with_current_names(file);
-    const Flight flight = recorded_flight(recorded, result_file.string());
+    const Flight flight = recorded_flight(recorded, version, result_file.string());
     ControllerSpec spec{recorded.at("label").get<std::string>(), recorded.at("controller").get<std::string>(),
                         json_to_yaml(recorded.at("controller_settings")), result_file.string(), {}};
     if (!ControllerRegistry::instance().contains(spec.controller))

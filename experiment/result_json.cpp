@@ -4,61 +4,13 @@
 #include <string_view>
 
 #include "core/error.hpp"
-#include "experiment/disturbance_json.hpp"
+#include "experiment/run_settings.hpp"
 
 namespace thetad {
 
 namespace {
 
 using Json = nlohmann::ordered_json;
-
-const char* to_string(sim::WindGustSettings::Model model) {
-  return model == sim::WindGustSettings::Model::held_white ? "held_white" : "gauss_markov";
-}
-
-const char* to_string(sim::MeasurementNoiseOn on) {
-  return on == sim::MeasurementNoiseOn::feedback_signal ? "feedback_signal" : "absolute_state";
-}
-
-Json settings_json(const sim::SimulationSettings& s) {
-  Json j;
-  j["dt_s"] = s.dt;
-  j["controller_period_steps"] = s.controller_period_steps;
-  j["controller_period_s"] = s.controller_period();
-  j["log_every"] = s.log_every;
-  j["summary_only"] = !s.keep_log;
-  j["duration_s"] = s.duration;
-  j["parameter_uncertainty"] = s.parameter_uncertainty;
-  j["uncertainty_scale"] = s.uncertainty_scale;
-  // Table 1's parameter deviations in table order, when fixed instead of drawn (a worst case).
-  if (!s.parameter_deviations.empty()) j["parameter_deviations"] = s.parameter_deviations;
-  j["wind_gust"] = {{"enabled", s.wind_gust.enabled},
-                    {"model", to_string(s.wind_gust.model)},
-                    {"sigma_m_per_s", s.wind_gust.sigma},
-                    {"correlation_time_s", s.wind_gust.correlation_time}};
-  j["gust_scale"] = s.wind_gust.amplitude_scale;
-  j["gust_onset_s"] = s.wind_gust.onset;
-  j["noise"] = {{"measurement", s.noise.measurement},
-                {"measurement_on", to_string(s.noise.measurement_on)},
-                {"actuator", s.noise.actuator},
-                {"wind_component", s.noise.wind_component},
-                {"induced_velocity", s.noise.induced_velocity},
-                {"scale", s.noise.scale}};
-  j["divergence_limits"] = {{"max_attitude_rad", s.limits.max_attitude},
-                            {"max_body_rate_rad_per_s", s.limits.max_body_rate},
-                            {"max_speed_m_per_s", s.limits.max_speed},
-                            {"max_ground_penetration_m", s.limits.max_ground_penetration}};
-  const auto channels = [](const sim::InputVector& v) { return Json::array({v[0], v[1], v[2], v[3], v[4]}); };
-  j["actuator_limits"] = {{"enabled", s.actuator_limits.enabled},
-                          {"anti_windup", s.actuator_limits.anti_windup},
-                          {"channels", {"T_mr_N", "delta_ped_rad", "delta_col_rad", "delta_lon_rad", "delta_lat_rad"}},
-                          {"lower", channels(s.actuator_limits.lower)},
-                          {"upper", channels(s.actuator_limits.upper)},
-                          {"rate_per_s", channels(s.actuator_limits.rate)}};
-  write_beyond_paper(s, j);
-  j["timing"] = s.measure_compute_time;
-  return j;
-}
 
 // A certificate's worst value: a number, "inf" (the stabilizability margin of a pair with nothing
 // to stabilize) or null (no sample had a value), which JSON numbers cannot tell apart.

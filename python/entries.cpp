@@ -6,19 +6,29 @@
 #include <vector>
 
 #include "campaigns/factors.hpp"
+#include "experiment/run_settings.hpp"
 #include "python/python_controller.hpp"
 
 namespace thetad::python {
 
 namespace {
 
-// A campaign factor as a keyword (docs/campaigns.md): a number, or for a factor with names one of
-// them (turbulence_intensity="severe"), read and checked as a campaign file's value.
-void apply_factor(const Factor& factor, py::handle value, RunControls& controls) {
-  try {
-    factor.apply(factor_value(factor, py::str(value).cast<std::string>()), controls);
-  } catch (const Error& error) {
-    throw py::value_error(std::string(factor.name) + ": " + error.what());
+// A keyword's value as the setting's command-line option reads it (a switch as a bool), or without
+// an option as a campaign value (docs/campaigns.md): a number, or for a choice one of its names
+// (turbulence_intensity="severe"), checked against the setting's range.
+void apply_keyword(const RunSetting& setting, py::handle value, RunControls& controls) {
+  if (setting.value == RunSetting::Value::on_off) {
+    setting.apply(value.cast<bool>() ? 1.0 : 0.0, controls);
+  } else if (setting.parse) {
+    setting.parse(py::str(value).cast<std::string>(), controls);
+  } else if (setting.option_form == RunSetting::Option::value) {
+    setting.apply(setting.value == RunSetting::Value::whole ? value.cast<int>() : value.cast<double>(), controls);
+  } else {
+    try {
+      setting.apply(factor_value(setting, py::str(value).cast<std::string>()), controls);
+    } catch (const Error& error) {
+      throw py::value_error(std::string(setting.name) + ": " + error.what());
+    }
   }
 }
 
@@ -26,7 +36,6 @@ void apply_factor(const Factor& factor, py::handle value, RunControls& controls)
 
 RunControls run_controls(const py::kwargs& keywords) {
   RunControls controls;
-  const auto flag = [](py::handle value) { return value.cast<bool>(); };
   // duration and dt are the earlier names of duration_s and dt_s (docs/glossary.md), kept working.
   for (const auto& [current, earlier] : {std::pair{"duration_s", "duration"}, std::pair{"dt_s", "dt"}}) {
     if (keywords.contains(current) && keywords.contains(earlier))
@@ -34,27 +43,15 @@ RunControls run_controls(const py::kwargs& keywords) {
   }
   for (const auto& [key, value] : keywords) {
     const std::string name = key.cast<std::string>();
-    if (name == "seed") controls.seed = value.cast<std::uint64_t>();
-    else if (name == "duration_s" || name == "duration") controls.duration = value.cast<double>();
-    else if (name == "dt_s" || name == "dt") controls.dt = value.cast<double>();
-    else if (name == "log_every") controls.log_every = value.cast<int>();
-    else if (name == "summary_only") controls.summary_only = flag(value);
-    else if (name == "timing") controls.timing = flag(value);
-    else if (name == "ideal") controls.ideal = flag(value);
-    else if (name == "parameter_uncertainty") controls.parameter_uncertainty = flag(value);
-    else if (name == "wind_gust") controls.wind_gust = flag(value);
-    else if (name == "measurement_noise") controls.measurement_noise = flag(value);
-    else if (name == "actuator_noise") controls.actuator_noise = flag(value);
-    else if (name == "wind_noise") controls.wind_noise = flag(value);
-    else if (name == "induced_velocity_noise") controls.induced_velocity_noise = flag(value);
-    else if (name == "actuator_limits") controls.actuator_limits = flag(value);
-    else if (name == "anti_windup") controls.anti_windup = flag(value);
-    else if (const Factor* factor = find_factor(name)) apply_factor(*factor, value, controls);
-    else
-      throw py::type_error("unknown run control '" + name +
-                           "' (seed, log_every, summary_only, timing, ideal, parameter_uncertainty, wind_gust, "
-                           "measurement_noise, actuator_noise, wind_noise, induced_velocity_noise, anti_windup, and "
-                           "the campaign factors: " + factor_names() + ")");
+    const RunSetting* setting = find_run_setting(name);
+    if (setting == nullptr || setting->value == RunSetting::Value::none) {
+      std::string known;
+      for (const RunSetting& each : run_settings()) {
+        if (each.value != RunSetting::Value::none) known += (known.empty() ? "" : ", ") + std::string(each.name);
+      }
+      throw py::type_error("unknown run control '" + name + "' (" + known + ")");
+    }
+    apply_keyword(*setting, value, controls);
   }
   return controls;
 }

@@ -34,7 +34,7 @@ CLI::App* add_approximation_command(CLI::App& app, ApproximationArguments& a) {
 
 int run_approximation(const ApproximationArguments& a) {
   // Inputs first: scenario, controls, settings, the output folder; then the flight.
-  RunControls controls = run_controls(a.flight);
+  RunControls controls = a.flight.controls;
   controls.summary_only = true;
   const Flight flight(a.flight.scenario, controls);
   const YAML::Node settings = a.flight.settings.empty() ? YAML::Node() : load_settings_file(a.flight.settings);

@@ -42,7 +42,7 @@ CLI::App* add_bench_command(CLI::App& app, BenchArguments& arguments) {
 
 int run_bench(const BenchArguments& arguments) {
   const FlightOptions& options = arguments.flight;
-  RunControls controls = run_controls(options);
+  RunControls controls = options.controls;
   controls.summary_only = true;
   // --plant without --scenario flies the plant, not the default scenario-1.
   FlightOptions chosen = options;

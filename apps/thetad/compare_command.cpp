@@ -30,7 +30,7 @@ CLI::App* add_compare_command(CLI::App& app, CompareArguments& arguments) {
 
 int run_compare(const CompareArguments& arguments) {
   const FlightOptions& options = arguments.flight;
-  const Flight flight = flight_of(options, run_controls(options));
+  const Flight flight = flight_of(options, options.controls);
   if (arguments.controllers.empty() == arguments.controllers_file.empty())
     throw Error("thetad compare needs --controllers or --controllers-file (one of them)");
   const std::vector<ControllerSpec> specs = arguments.controllers_file.empty()

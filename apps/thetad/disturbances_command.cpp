@@ -26,7 +26,7 @@ int run_disturbances(const DisturbancesArguments& arguments) {
   prepare_output_folder(options.out);
   Progress progress(Progress::mode_for_stderr(options.quiet));
   const DisturbanceEffects effects =
-      fly_disturbance_effects(options.scenario, run_controls(options), specs, jobs_or_every_core(arguments.jobs), &progress);
+      fly_disturbance_effects(options.scenario, options.controls, specs, jobs_or_every_core(arguments.jobs), &progress);
   std::fputs(disturbance_table(effects).c_str(), stdout);
   const auto file = options.out / "disturbances.json";
   write_file_atomically(file, disturbance_json(effects).dump(2) + "\n");

@@ -29,7 +29,7 @@ CLI::App* add_export_command(CLI::App& app, ExportArguments& arguments) {
 }
 
 int run_export(const ExportArguments& arguments) {
-  RunControls controls = run_controls(arguments.flight);
+  RunControls controls = arguments.flight.controls;
   controls.summary_only = true;
   const Flight flight(arguments.flight.scenario, controls);
   PreparedController prepared =

@@ -1,6 +1,7 @@
 #include "apps/thetad/run_command.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <thread>
 #include <optional>
@@ -16,6 +17,7 @@
 #include "experiment/replay.hpp"
 #include "experiment/result_json.hpp"
 #include "experiment/run_files.hpp"
+#include "experiment/run_settings.hpp"
 #include "experiment/json_file.hpp"
 
 namespace thetad::app {
@@ -130,6 +132,54 @@ void set_factor(const std::string& item, RunControls& controls) {
   }
 }
 
+// The run setting's own option (RunSetting::option), setting it in `controls` as the row says.
+void add_setting_option(CLI::App& command, const RunSetting& setting, RunControls& controls) {
+  const std::string name(setting.option);
+  std::string help(setting.description);
+  help[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(help[0])));
+  const RunSetting* row = &setting;
+  using Option = RunSetting::Option;
+  switch (setting.option_form) {
+    case Option::on_off:
+      command
+          .add_option_function<std::string>(
+              name, [row, &controls](const std::string& text) { row->apply(text == "on" ? 1.0 : 0.0, controls); },
+              help + ": on|off")
+          ->check(CLI::IsMember({"on", "off"}));
+      return;
+    case Option::on_when_given:
+    case Option::off_when_given: {
+      const bool on = setting.option_form == Option::on_when_given;
+      command.add_flag_function(
+          name, [row, on, &controls](std::int64_t) { row->apply(on ? 1.0 : 0.0, controls); },
+          on ? help : "Off: " + std::string(setting.description));
+      return;
+    }
+    case Option::value:
+      break;
+    case Option::none:
+      return;
+  }
+  const std::string unit = setting.unit.empty() ? "" : " [" + std::string(setting.unit) + "]";
+  if (setting.parse) {
+    command.add_option_function<std::string>(
+        name,
+        [row, name, &controls](const std::string& text) {
+          try {
+            row->parse(text, controls);
+          } catch (const Error& error) {
+            throw CLI::ValidationError(name, error.what());
+          }
+        },
+        help);
+  } else if (setting.value == RunSetting::Value::whole) {
+    command.add_option_function<int>(name, [row, &controls](int value) { row->apply(value, controls); }, help + unit);
+  } else {
+    command.add_option_function<double>(name, [row, &controls](double value) { row->apply(value, controls); },
+                                        help + unit);
+  }
+}
+
 }  // namespace
 
 void add_flight_options(CLI::App& command, FlightOptions& options, bool scenario_required, bool writes_runs) {
@@ -139,22 +189,9 @@ void add_flight_options(CLI::App& command, FlightOptions& options, bool scenario
   if (scenario_required) scenario->required();
   command.add_option("--settings", options.settings,
                      "Controller settings (YAML): a map from controller name to its settings block");
-  command.add_option_function<std::string>(
-      "--seed", [&options](const std::string& text) { options.controls.seed = parse_seed(text); },
-      "Seed of the run's random numbers (default: the scenario's, else 1)");
-  command.add_flag("--ideal", options.controls.ideal, "No parameter uncertainty, noise, wind or actuator limits");
-  command
-      .add_option_function<std::string>(
-          "--actuator-limits", [&options](const std::string& text) { options.controls.actuator_limits = text == "on"; },
-          "Servo magnitude and rate limits on the applied input: on|off (default: the scenario's, else on; "
-          "docs/model.md §12)")
-      ->check(CLI::IsMember({"on", "off"}));
-  command
-      .add_option_function<std::string>(
-          "--anti-windup", [&options](const std::string& text) { options.controls.anti_windup = text == "on"; },
-          "With the actuator limits, hold the position-error integrals at samples where a limit acts: on|off "
-          "(default: the scenario's, else on; docs/model.md §12)")
-      ->check(CLI::IsMember({"on", "off"}));
+  for (const RunSetting& setting : run_settings()) {
+    if (writes_runs || !setting.option_writes_runs) add_setting_option(command, setting, options.controls);
+  }
   command.add_option_function<std::vector<std::string>>(
       "--set",
       [&options](const std::vector<std::string>& items) {
@@ -162,23 +199,6 @@ void add_flight_options(CLI::App& command, FlightOptions& options, bool scenario
       },
       "A campaign factor for this flight, NAME=VALUE (repeatable; docs/campaigns.md lists them): "
       "uncertainty_scale=2, turbulence_model=dryden, turbulence_intensity=severe, servo_delay_samples=2, slowdown=30, ...");
-  command.add_option_function<double>(
-      "--duration", [&options](double value) { options.controls.duration = value; },
-      "Simulated seconds to fly (default: the scenario's)");
-  command.add_option_function<double>(
-      "--dt", [&options](double value) { options.controls.dt = value; },
-      "Plant (RK4) step in s; must divide the controller period (1 ms)");
-  if (writes_runs) {
-    command.add_option_function<int>(
-        "--log-every", [&options](int value) { options.controls.log_every = value; },
-        "Log every N-th controller sample (default 1)");
-    command.add_flag_function(
-        "--summary-only", [&options](std::int64_t) { options.controls.summary_only = true; },
-        "Write no log (CSV), only the result JSON (complete summary)");
-    command.add_flag("--no-timing", options.no_timing,
-                     "Measure no wall-clock time (no in-flight step-time column, host or start time): reruns with "
-                     "the same seed give byte-identical files");
-  }
   command.add_flag("--quiet", options.quiet, "No progress display");
   command.add_option("--out", options.out, "Output directory (created; checked before anything flies)");
 }
@@ -218,12 +238,6 @@ Flight flight_of(const FlightOptions& options, const RunControls& controls) {
   return Flight::of_scenario_or_plant(options.scenario, options.plant, initial_state, controls);
 }
 
-RunControls run_controls(const FlightOptions& options) {
-  RunControls controls = options.controls;
-  if (options.no_timing) controls.timing = false;
-  return controls;
-}
-
 CLI::App* add_run_command(CLI::App& app, RunArguments& arguments) {
   auto* run = app.add_subcommand(
       "run", "Fly one controller through a scenario; write <out>/<label>.csv and .json. Exit code 0: completed, "
@@ -244,7 +258,7 @@ int run_run(const RunArguments& arguments) {
       arguments.flight.out.empty())
     throw Error("thetad run needs --scenario, --controller and --out (or --replay RESULT.json)");
   // Everything that can be wrong is found before the flight: files, specs, the output folder.
-  const Flight flight = flight_of(arguments.flight, run_controls(arguments.flight));
+  const Flight flight = flight_of(arguments.flight, arguments.flight.controls);
   PreparedController prepared = flight.prepare(parse_controller_specs({arguments.controller}, arguments.flight.settings).front());
   prepare_output_folder(arguments.flight.out);
 

@@ -25,7 +25,6 @@ struct FlightOptions {
   std::string plant;                  // a registered plant instead of a scenario (add_plant_options)
   std::vector<double> initial_state;  // for the plant; empty: its own
   RunControls controls;
-  bool no_timing = false;
   bool quiet = false;
   std::filesystem::path out;
 };
@@ -34,8 +33,9 @@ struct FlightOptions {
 // 2^64 - 1 are CLI11 validation errors naming the option, not wraps.
 std::uint64_t parse_seed(const std::string& text, const std::string& option = "--seed");
 
-// Adds --scenario, --settings, --seed, --ideal, --duration, --dt, --quiet and --out to `command`,
-// and, for a command that writes runs, --log-every, --summary-only and --no-timing.
+// Adds --scenario, --settings, every run setting's own option (experiment/run_settings.hpp: --seed,
+// --ideal, --duration, --dt, ...; those for run files, --log-every, --summary-only and --no-timing,
+// only for a command that writes runs), --set, --quiet and --out to `command`.
 void add_flight_options(CLI::App& command, FlightOptions& options, bool scenario_required = true,
                         bool writes_runs = true);
 
@@ -43,8 +43,6 @@ void add_flight_options(CLI::App& command, FlightOptions& options, bool scenario
 // (docs/plants.md), for the commands that build their flight with flight_of().
 void add_plant_options(CLI::App& command, FlightOptions& options);
 
-// The run controls the options ask for.
-RunControls run_controls(const FlightOptions& options);
 // The flight of --scenario or --plant (one of them) with `controls`.
 Flight flight_of(const FlightOptions& options, const RunControls& controls);
 

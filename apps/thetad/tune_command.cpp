@@ -139,7 +139,7 @@ int run_tune(const TuneArguments& a) {
   tuning::TuneOptions options = a.tune;
   options.scenario = a.flight.scenario;
   options.settings = a.flight.settings;
-  options.controls = run_controls(a.flight);
+  options.controls = a.flight.controls;
   options.out = a.flight.out;
   Progress progress(Progress::mode_for_stderr(a.flight.quiet));
   const tuning::TuningReport report = tuning::tune(options, &progress);

@@ -45,7 +45,7 @@ int run_worst_case(const WorstCaseArguments& arguments) {
   search.progress = [quiet = options.quiet](const std::string& label, int evaluations, int budget) {
     if (!quiet) std::fprintf(stderr, "%s: %d / %d flights\n", label.c_str(), evaluations, budget);
   };
-  const tuning::WorstCases cases = tuning::find_worst_cases(options.scenario, run_controls(options), specs, search);
+  const tuning::WorstCases cases = tuning::find_worst_cases(options.scenario, options.controls, specs, search);
 
   const char* metric = tuning::metric_key(search.metric);
   std::printf("%-16s %-24s %14s %-24s %14s %6s  %s\n", "label", "nominal", metric, "worst", metric, "flights", "stop");

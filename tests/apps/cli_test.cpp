@@ -9,6 +9,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "experiment/run_settings.hpp"
 #include "tests/apps/run_thetad.hpp"
 #include "tests/scratch_directory.hpp"
 #include <nlohmann/json.hpp>
@@ -44,6 +45,25 @@ TEST_F(Cli, ListShowsTheRegisteredControllers) {
   EXPECT_EQ(output.status, 0) << output.err;
   EXPECT_THAT(output.out, HasSubstr("lqr "));
   EXPECT_THAT(output.out, HasSubstr("example-pid "));
+}
+
+// Every run setting with an option of its own (experiment/run_settings.hpp) is an option of the
+// commands that fly; those about run files only of the commands that write them.
+TEST_F(Cli, EveryRunSettingWithAnOptionIsOffered) {
+  const Output run = thetad("run --help");
+  const Output bench = thetad("bench --help");
+  ASSERT_EQ(run.status, 0) << run.err;
+  ASSERT_EQ(bench.status, 0) << bench.err;
+  for (const thetad::RunSetting& setting : thetad::run_settings()) {
+    if (setting.option.empty()) continue;
+    const std::string option = std::string(setting.option) + " ";
+    EXPECT_THAT(run.out, HasSubstr(option));
+    if (setting.option_writes_runs) {
+      EXPECT_THAT(bench.out, Not(HasSubstr(option)));
+    } else {
+      EXPECT_THAT(bench.out, HasSubstr(option));
+    }
+  }
 }
 
 TEST_F(Cli, RunWritesTheLogAndAParsableSummary) {
