@@ -1,6 +1,7 @@
 // The rows of the run settings' table (experiment/run_settings.hpp).
 #include "experiment/run_settings.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <numbers>
@@ -27,13 +28,6 @@ std::string seconds(double value) {
   text.precision(12);
   text << value << " s";
   return text.str();
-}
-
-// A multiplier of a disturbance's strength: finite and >= 0.
-double scale(const char* name, double value) {
-  if (!(value >= 0.0) || !std::isfinite(value))
-    throw Error(std::string(name) + " " + std::to_string(value) + ": must be finite and >= 0");
-  return value;
 }
 
 // A switch: 0 off, 1 on (a campaign value is a number, and anything between would be a typo). The
@@ -68,6 +62,32 @@ RunSetting switch_row(RunSetting row) {
     if (c.*control) (s .* ... .* path) = *(c.*control);
   };
   row.replay = [](const Json& v, RunControls& c) { c.*control = v.get<bool>(); };
+  return row;
+}
+
+// A row's name as a template argument, for the rows a template makes.
+template <std::size_t N>
+struct Name {
+  constexpr Name(const char (&text)[N]) { std::copy_n(text, N, chars); }
+  char chars[N];
+};
+
+// A multiplier of a disturbance's strength, finite and >= 0: the RunControls member `control` sets
+// the field of the flight's settings that `path` leads to; `row` says the rest.
+template <Name name, std::optional<double> RunControls::*control, auto... path>
+RunSetting scale_row(RunSetting row) {
+  row.name = name.chars;
+  row.value = Value::number;
+  row.min = 0.0;
+  row.apply = [](double v, RunControls& c) { c.*control = v; };
+  row.fly = [](const RunControls& c, sim::SimulationSettings& s) {
+    if (!(c.*control)) return;
+    const double value = *(c.*control);
+    if (!(value >= 0.0) || !std::isfinite(value))
+      throw Error(std::string(name.chars) + " " + std::to_string(value) + ": must be finite and >= 0");
+    (s .* ... .* path) = value;
+  };
+  if (!row.result_key.empty()) row.replay = [](const Json& v, RunControls& c) { c.*control = v.get<double>(); };
   return row;
 }
 
@@ -171,20 +191,13 @@ std::vector<RunSetting> table() {
            .record = [](const Settings& s, Json& j) { j["parameter_uncertainty"] = s.parameter_uncertainty; },
            .result_key = "settings.parameter_uncertainty",
            .file_key = "simulation.disturbances.parameter_uncertainty"}),
-      {.name = "uncertainty_scale", .value = Value::number,
-       .description = "multiplies Table 1's 21 parameter bounds (0 nominal plant, 1 the paper's, 2 twice)", .min = 0.0,
-       .max = 9.99, .apply = [](double v, RunControls& c) { c.uncertainty_scale = v; }, .factor_column = 1,
-       .example = "0.5",
-       .fly = [](const RunControls& c, Settings& s) {
-         if (!c.uncertainty_scale) return;
-         s.uncertainty_scale = scale("uncertainty_scale", *c.uncertainty_scale);
-         heli::check_uncertainty_scale(s.uncertainty_scale);
-       },
-       .record = [](const Settings& s, Json& j) { j["uncertainty_scale"] = s.uncertainty_scale; },
-       .result_key = "settings.uncertainty_scale",
-       .replay = [](const Json& v, RunControls& c) { c.uncertainty_scale = v.get<double>(); },
-       // Results written before the disturbance scales existed flew at the paper's strengths.
-       .absent_until = 1, .before = [](RunControls& c) { c.uncertainty_scale = 1.0; }},
+      scale_row<"uncertainty_scale", &RunControls::uncertainty_scale, &Settings::uncertainty_scale>(
+          {.description = "multiplies Table 1's 21 parameter bounds (0 nominal plant, 1 the paper's, 2 twice)",
+           .max = 9.99, .factor_column = 1, .example = "0.5",
+           .record = [](const Settings& s, Json& j) { j["uncertainty_scale"] = s.uncertainty_scale; },
+           .result_key = "settings.uncertainty_scale",
+           // Results written before the disturbance scales existed flew at the paper's strengths.
+           .absent_until = 1, .before = [](RunControls& c) { c.uncertainty_scale = 1.0; }}),
       {.name = "parameter_deviations",
        .description = "Table 1's 21 parameter deviations xi in [-1, 1] instead of the draw (a worst case)",
        .fly = [](const RunControls& c, Settings& s) {
@@ -200,28 +213,23 @@ std::vector<RunSetting> table() {
        .replay = [](const Json& v, RunControls& c) { c.parameter_deviations = v.get<std::vector<double>>(); },
        .absent_until = RunSetting::kEveryVersion, .file_key = "simulation.disturbances.parameter_deviations"},
       switch_row<&RunControls::wind_gust, &Settings::wind_gust, &sim::WindGustSettings::enabled>(
-          {.name = "wind_gust", .description = "the paper's wind: mean and gust (Table 1 #22-25)",
-           .example = "0",
+          {.name = "wind_gust", .description = "the paper's wind: mean and gust (Table 1 #22-25)", .example = "0",
            .record = [](const Settings& s, Json& j) {
              j["wind_gust"] = {{"enabled", s.wind_gust.enabled},
-                               {"model",
-                                s.wind_gust.model == sim::WindGustSettings::Model::held_white ? "held_white" : "gauss_markov"},
+                               {"model", s.wind_gust.model == sim::WindGustSettings::Model::held_white
+                                             ? "held_white"
+                                             : "gauss_markov"},
                                {"sigma_m_per_s", s.wind_gust.sigma},
                                {"correlation_time_s", s.wind_gust.correlation_time}};
            },
            .result_key = "settings.wind_gust.enabled",
            .file_key = "simulation.disturbances.wind_gust"}),
-      {.name = "gust_scale", .value = Value::number,
-       .description = "multiplies the whole wind, mean and gust (0 calm, 1 the paper's gust)", .min = 0.0,
-       .apply = [](double v, RunControls& c) { c.gust_scale = v; }, .factor_column = 2,
-       .example = "0.5",
-       .fly = [](const RunControls& c, Settings& s) {
-         if (c.gust_scale) s.wind_gust.amplitude_scale = scale("gust_scale", *c.gust_scale);
-       },
-       .record = [](const Settings& s, Json& j) { j["gust_scale"] = s.wind_gust.amplitude_scale; },
-       .result_key = "settings.gust_scale",
-       .replay = [](const Json& v, RunControls& c) { c.gust_scale = v.get<double>(); },
-       .absent_until = 1, .before = [](RunControls& c) { c.gust_scale = 1.0; }},
+      scale_row<"gust_scale", &RunControls::gust_scale, &Settings::wind_gust, &sim::WindGustSettings::amplitude_scale>(
+          {.description = "multiplies the whole wind, mean and gust (0 calm, 1 the paper's gust)", .factor_column = 2,
+           .example = "0.5",
+           .record = [](const Settings& s, Json& j) { j["gust_scale"] = s.wind_gust.amplitude_scale; },
+           .result_key = "settings.gust_scale",
+           .absent_until = 1, .before = [](RunControls& c) { c.gust_scale = 1.0; }}),
       {.name = "gust_onset_s", .value = Value::number, .unit = "s",
        .description = "time the wind starts blowing (calm air before)", .min = 0.0,
        .apply = [](double v, RunControls& c) { c.gust_onset = v; }, .factor_column = 3, .earlier_name = "gust_onset",
@@ -237,8 +245,7 @@ std::vector<RunSetting> table() {
        .replay = [](const Json& v, RunControls& c) { c.gust_onset = v.get<double>(); },
        .absent_until = 1, .before = [](RunControls& c) { c.gust_onset = 0.0; }},
       switch_row<&RunControls::measurement_noise, &Settings::noise, &sim::NoiseSettings::measurement>(
-          {.name = "measurement_noise", .description = "the sensors' noise (Table 1 #31-42)",
-           .example = "0",
+          {.name = "measurement_noise", .description = "the sensors' noise (Table 1 #31-42)", .example = "0",
            // The noise block: this row's switch and those of the rows after it.
            .record = [](const Settings& s, Json& j) {
              j["noise"] = {{"measurement", s.noise.measurement},
@@ -253,13 +260,11 @@ std::vector<RunSetting> table() {
            .result_key = "settings.noise.measurement",
            .file_key = "simulation.disturbances.measurement_noise"}),
       switch_row<&RunControls::actuator_noise, &Settings::noise, &sim::NoiseSettings::actuator>(
-          {.name = "actuator_noise", .description = "the actuators' noise (Table 1 #43-47)",
-           .example = "0",
+          {.name = "actuator_noise", .description = "the actuators' noise (Table 1 #43-47)", .example = "0",
            .result_key = "settings.noise.actuator",
            .file_key = "simulation.disturbances.actuator_noise"}),
       switch_row<&RunControls::wind_noise, &Settings::noise, &sim::NoiseSettings::wind_component>(
-          {.name = "wind_noise", .description = "the wind components' noise (Table 1 #26-28)",
-           .example = "0",
+          {.name = "wind_noise", .description = "the wind components' noise (Table 1 #26-28)", .example = "0",
            .result_key = "settings.noise.wind_component",
            .file_key = "simulation.disturbances.wind_noise"}),
       switch_row<&RunControls::induced_velocity_noise, &Settings::noise, &sim::NoiseSettings::induced_velocity>(
@@ -267,16 +272,11 @@ std::vector<RunSetting> table() {
            .example = "0",
            .result_key = "settings.noise.induced_velocity",
            .file_key = "simulation.disturbances.induced_velocity_noise"}),
-      {.name = "noise_scale", .value = Value::number,
-       .description = "multiplies every sensor, actuator, wind-component and induced-velocity noise level", .min = 0.0,
-       .apply = [](double v, RunControls& c) { c.noise_scale = v; }, .factor_column = 4,
-       .example = "0.5",
-       .fly = [](const RunControls& c, Settings& s) {
-         if (c.noise_scale) s.noise.scale = scale("noise_scale", *c.noise_scale);
-       },
-       .result_key = "settings.noise.scale",
-       .replay = [](const Json& v, RunControls& c) { c.noise_scale = v.get<double>(); },
-       .absent_until = 1, .before = [](RunControls& c) { c.noise_scale = 1.0; }},
+      scale_row<"noise_scale", &RunControls::noise_scale, &Settings::noise, &sim::NoiseSettings::scale>(
+          {.description = "multiplies every sensor, actuator, wind-component and induced-velocity noise level",
+           .factor_column = 4, .example = "0.5",
+           .result_key = "settings.noise.scale",
+           .absent_until = 1, .before = [](RunControls& c) { c.noise_scale = 1.0; }}),
       {.name = "divergence_limits", .description = "where a flight is declared diverged (a record only)",
        .record = [](const Settings& s, Json& j) {
          j["divergence_limits"] = {{"max_attitude_rad", s.limits.max_attitude},
@@ -328,9 +328,7 @@ std::vector<RunSetting> table() {
        .min = 0.0, .max = 2.0, .choices = "paper dryden gauss_markov",
        .apply = [](double v, RunControls& c) {
          c.turbulence_model = static_cast<sim::TurbulenceSettings::Model>(whole(v));
-       },
-       .factor_column = 14,
-       .example = "dryden",
+       }, .factor_column = 14, .example = "dryden",
        .fly = [](const RunControls& c, Settings& s) { if (c.turbulence_model) s.turbulence.model = *c.turbulence_model; },
        .file_key = "simulation.wind.model"},
       {.name = "turbulence_intensity", .value = Value::choice,
@@ -338,27 +336,21 @@ std::vector<RunSetting> table() {
        .choices = "light moderate severe",
        .apply = [](double v, RunControls& c) {
          c.turbulence_intensity = static_cast<sim::TurbulenceIntensity>(whole(v));
-       },
-       .factor_column = 15,
-       .example = "severe",
+       }, .factor_column = 15, .example = "severe",
        .fly = [](const RunControls& c, Settings& s) {
          if (c.turbulence_intensity) s.turbulence.intensity = *c.turbulence_intensity;
        },
        .file_key = "simulation.wind.intensity"},
-      {.name = "turbulence_scale", .value = Value::number,
-       .description = "multiplies the Dryden or Gauss-Markov turbulence (0 none, 1 as specified)", .min = 0.0,
-       .apply = [](double v, RunControls& c) { c.turbulence_scale = v; }, .factor_column = 16,
-       .example = "0.5",
-       .fly = [](const RunControls& c, Settings& s) {
-         if (c.turbulence_scale) s.turbulence.scale = scale("turbulence_scale", *c.turbulence_scale);
-       },
-       .file_key = "simulation.wind.scale"},
+      scale_row<"turbulence_scale", &RunControls::turbulence_scale, &Settings::turbulence,
+                &sim::TurbulenceSettings::scale>(
+          {.description = "multiplies the Dryden or Gauss-Markov turbulence (0 none, 1 as specified)",
+           .factor_column = 16, .example = "0.5",
+           .file_key = "simulation.wind.scale"}),
       {.name = "servo_delay_samples", .value = Value::whole, .unit = "samples",
        .description = "transport delay of the command, in controller samples", .min = 0.0,
        .max = sim::ServoSettings::kMaxDelaySamples,
        .apply = [](double v, RunControls& c) { c.servo_delay_samples = whole(v); },
-       .factor_column = 17, .earlier_name = "servo_delay",
-       .example = "2",
+       .factor_column = 17, .earlier_name = "servo_delay", .example = "2",
        .fly = [](const RunControls& c, Settings& s) {
          if (c.servo_delay_samples) s.servos.delay_samples = *c.servo_delay_samples;
        },
@@ -366,8 +358,7 @@ std::vector<RunSetting> table() {
       {.name = "servo_time_constant_s", .value = Value::number, .unit = "s",
        .description = "first-order servo lag of every input", .min = 0.0, .max = 10.0,
        .apply = [](double v, RunControls& c) { c.servo_time_constant = v; }, .factor_column = 18,
-       .earlier_name = "servo_time_constant",
-       .example = "0.02",
+       .earlier_name = "servo_time_constant", .example = "0.02",
        .fly = [](const RunControls& c, Settings& s) {
          if (c.servo_time_constant) s.servos.time_constant.setConstant(*c.servo_time_constant);
        },
@@ -376,8 +367,7 @@ std::vector<RunSetting> table() {
        .description = "the flight computer this many times slower than its step times (docs/model.md §15.7; the "
                       "scenario's computer latency measured or step-time)",
        .min = 0.0, .max = sim::FlightComputerSettings::kMaxSlowdown,
-       .apply = [](double v, RunControls& c) { c.slowdown = v; }, .factor_column = 19,
-       .example = "30",
+       .apply = [](double v, RunControls& c) { c.slowdown = v; }, .factor_column = 19, .example = "30",
        .fly = [](const RunControls& c, Settings& s) {
          if (!c.slowdown) return;
          using Latency = sim::FlightComputerSettings::Latency;

@@ -34,7 +34,7 @@ struct RunSetting {
   enum class Option { none, value, on_off, on_when_given, off_when_given };
   static constexpr int kEveryVersion = std::numeric_limits<int>::max();
 
-  std::string_view name;  // the Python keyword, the campaign factor and its column, the docs' name
+  std::string_view name = {};  // the Python keyword, the campaign factor and its column, the docs' name
   Value value = Value::none;
   std::string_view unit = {};
   std::string_view description = {};  // for docs and --help
