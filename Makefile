@@ -18,6 +18,10 @@ CMAKE_FLAGS += -DCMAKE_BUILD_TYPE=Release
 endif
 BENCH_DIR ?= build-bench
 OUT ?= out
+# Ninja for a new build folder: it compiles a target's units while the libraries it links are still
+# being built, where Make's generated files wait for them, so that both cores stay busy (docs/
+# performance-log.md, "Build time, third pass"). A folder keeps the generator it was configured with.
+generator = $(if $(wildcard $(1)/CMakeCache.txt),,-G Ninja)
 
 .PHONY: all deps configure build program test sanitize demo bench fuzz clean
 
@@ -27,7 +31,7 @@ deps:
 	@bash scripts/install-deps.sh
 
 configure: deps
-	cmake -S . -B $(BUILD_DIR) $(CMAKE_FLAGS)
+	cmake -S . -B $(BUILD_DIR) $(call generator,$(BUILD_DIR)) $(CMAKE_FLAGS)
 
 build: configure
 	cmake --build $(BUILD_DIR) -j $(JOBS)
@@ -42,7 +46,7 @@ test: build
 # The sanitizer subset (docs/reliability.md): the unit tests of the numerics, the simulator and
 # the readers, and the fuzz replays, under ASan and UBSan; builds only what they need.
 sanitize: deps
-	cmake -S . -B $(SANITIZE_DIR) $(SANITIZE_FLAGS)
+	cmake -S . -B $(SANITIZE_DIR) $(call generator,$(SANITIZE_DIR)) $(SANITIZE_FLAGS)
 	cmake --build $(SANITIZE_DIR) -j $(JOBS) --target sanitize_tests
 	cd $(SANITIZE_DIR) && ctest --output-on-failure -j $(JOBS) -L sanitize
 
@@ -56,7 +60,7 @@ demo: program
 
 # Benchmarks are built separately with -march=native (see docs/performance.md).
 bench: deps
-	cmake -S . -B $(BENCH_DIR) -DCMAKE_BUILD_TYPE=Release -DTHETAD_NATIVE=ON -DTHETAD_BUILD_TESTS=OFF
+	cmake -S . -B $(BENCH_DIR) $(call generator,$(BENCH_DIR)) -DCMAKE_BUILD_TYPE=Release -DTHETAD_NATIVE=ON -DTHETAD_BUILD_TESTS=OFF
 	cmake --build $(BENCH_DIR) -j $(JOBS)
 	bash bench/run.sh $(BENCH_DIR) $(OUT)/bench
 
@@ -66,7 +70,7 @@ FUZZ_DIR ?= build-fuzz
 FUZZ_SECONDS ?= 60
 fuzz:
 	@bash scripts/install-deps.sh clang libclang-rt-14-dev
-	CC=clang CXX=clang++ cmake -S . -B $(FUZZ_DIR) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTHETAD_FUZZ=ON \
+	CC=clang CXX=clang++ cmake -S . -B $(FUZZ_DIR) $(call generator,$(FUZZ_DIR)) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTHETAD_FUZZ=ON \
 	  -DTHETAD_BUILD_TESTS=OFF -DTHETAD_BUILD_BENCH=OFF -DTHETAD_BUILD_PYTHON=OFF
 	cmake --build $(FUZZ_DIR) -j $(JOBS) --target fuzz_scenario fuzz_settings fuzz_controllers fuzz_campaign
 	for target in scenario settings controllers campaign; do \

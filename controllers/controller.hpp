@@ -1,5 +1,7 @@
 #pragma once
 
+#include <algorithm>
+#include <cstddef>
 #include <memory>
 #include <string>
 #include <utility>
@@ -19,6 +21,25 @@ namespace thetad {
 class Controller : public ControlLaw {
  public:
   virtual std::unique_ptr<Controller> clone() const = 0;
+};
+
+// A string literal as a template argument: a controller's name, written once, in its class.
+template <std::size_t N>
+struct ControllerName {
+  // Implicit, so that NamedController<"name"> takes the literal itself.
+  constexpr ControllerName(const char (&text)[N]) { std::copy_n(text, N, value); }
+  char value[N];
+};
+
+// The base of a controller known by name: name() is Name, and register_controller<C>
+// (controllers/registry.hpp) registers C under it, so that the name a run records and the name
+// a user types cannot differ. A controller whose settings select a variant may override name()
+// with Name plus a suffix ("sdre-warm"); the registry accepts that and nothing else.
+template <ControllerName Name>
+class NamedController : public Controller {
+ public:
+  static constexpr const char* kName = Name.value;
+  std::string name() const override { return kName; }
 };
 
 }  // namespace thetad

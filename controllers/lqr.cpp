@@ -115,8 +115,7 @@ std::unique_ptr<Controller> make_lqr(const Settings& fields, const ControllerCon
       });
 }
 
-const ControllerRegistration registration(
-    "lqr",
+const ControllerRegistration lqr_registration = register_controller<LqrController>(
     "LQR at the hover trim, one fixed gain on V_track (Eq. 36) with the paper's Q and R; settings: Q, R, "
     "feedforward (none|velocity|velocity+trim); on another plant, at its design point (the origin, its u0)",
     make_lqr);

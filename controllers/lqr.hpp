@@ -34,7 +34,7 @@ struct LqrSettings {
   Eigen::Index design_states = 0;
 };
 
-class LqrController final : public Controller {
+class LqrController final : public NamedController<"lqr"> {
  public:
   // Designs the gain now (one CARE): reset() and clones reuse it. Keeps a reference to the model:
   // it must outlive the controller and its clones. Throws thetad::Error on settings that do not
@@ -44,7 +44,6 @@ class LqrController final : public Controller {
   // feed-forward LQR flies on the error form a gain designed on the plant at its trim.
   LqrController(const SdcPlant& model, OperatingPoint point, CareResult design, Eigen::Index design_states);
 
-  std::string name() const override { return "lqr"; }
   std::unique_ptr<Controller> clone() const override { return std::make_unique<LqrController>(*this); }
 
   void reset(const Eigen::VectorXd& x0, double t0) override;

@@ -212,8 +212,7 @@ std::unique_ptr<Controller> make_lqr_scheduled(const Settings& fields, const Con
   return std::make_unique<LqrScheduledController>(model, std::move(table), time_constant, feedforward, exact);
 }
 
-const ControllerRegistration registration(
-    "lqr-scheduled",
+const ControllerRegistration lqr_scheduled_registration = register_controller<LqrScheduledController>(
     "LQR gain-scheduled over trims 0-20 m/s (course, climb), blended on the commanded velocity; settings: "
     "table (a `thetad design-lqr` file) or grid, Q, R; velocity_time_constant, velocity_source (filtered|exact), "
     "feedforward (velocity+trim|velocity|none)",

@@ -39,7 +39,7 @@ void advance_scheduling_velocity(const Eigen::Vector3d& reference_step, double p
 void check_lqr_envelope(const LqrScheduleGrid& grid, double velocity_time_constant, const ReferenceTrajectory& reference,
                         double duration, double period, bool exact_velocity = false);
 
-class LqrScheduledController final : public Controller {
+class LqrScheduledController final : public NamedController<"lqr-scheduled"> {
  public:
   static constexpr int kDesignStates = LqrScheduleTable::kDesignStates;
   using Gain = Eigen::Matrix<double, heli::kInputDim, kDesignStates>;
@@ -67,7 +67,6 @@ class LqrScheduledController final : public Controller {
                          double velocity_time_constant = kDefaultVelocityTimeConstant,
                          FeedForward feedforward = FeedForward::velocity_trim, bool exact_velocity = false);
 
-  std::string name() const override { return "lqr-scheduled"; }
   std::unique_ptr<Controller> clone() const override { return std::make_unique<LqrScheduledController>(*this); }
 
   void reset(const Eigen::VectorXd& x0, double t0) override;

@@ -60,6 +60,13 @@ BuiltController ControllerRegistry::build(const std::string& name, const YAML::N
   const Settings fields(settings);
   std::unique_ptr<Controller> controller = found.factory(fields, context);
   if (!controller) throw Error("controller '" + name + "' (" + found.origin + "): its factory returned no controller");
+  // A run records name(); a variant may add a suffix ("sdre-warm"), nothing else, so that the
+  // result names what the user asked for.
+  const std::string called = controller->name();
+  if (called != name && !called.starts_with(name + "-"))
+    throw Error("controller '" + escaped_utf8(name) + "' (" + found.origin + ") built a controller that calls itself '" +
+                escaped_utf8(called) + "': derive it from NamedController<\"" + escaped_utf8(name) +
+                "\"> and register it with register_controller (controllers/registry.hpp)");
   return {std::move(controller), fields.resolved()};
 }
 

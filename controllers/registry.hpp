@@ -99,12 +99,23 @@ class ControllerRegistry : public Registry<ControllerFactory> {
 };
 
 // `interface_version` is left to its default: it records the version the registering code (a
-// plug-in) was built against.
+// plug-in) was built against. The name must be the one the built controllers give (their name(),
+// or it plus a variant's suffix): ControllerRegistry::build refuses any other. A controller class
+// derived from NamedController is registered with register_controller<C>, which takes the name from
+// the class; this constructor is for names chosen at run time (one class under several names).
 struct ControllerRegistration {
   ControllerRegistration(const std::string& name, const std::string& description, ControllerFactory factory,
                          int interface_version = kPluginInterfaceVersion) {
     ControllerRegistry::instance().add(name, description, std::move(factory), interface_version);
   }
 };
+
+// Registers the controller class C (a NamedController) under its name:
+//   const ControllerRegistration registration = register_controller<MyController>("what it is", make_mine);
+template <class C>
+ControllerRegistration register_controller(const std::string& description, ControllerFactory factory,
+                                           int interface_version = kPluginInterfaceVersion) {
+  return ControllerRegistration(C::kName, description, std::move(factory), interface_version);
+}
 
 }  // namespace thetad

@@ -5,6 +5,7 @@
 #include <Eigen/Cholesky>
 
 #include "controllers/feedforward_controller.hpp"
+#include "controllers/matrix_setting.hpp"
 #include "controllers/registry.hpp"
 #include "settings/settings.hpp"
 #include "core/error.hpp"
@@ -15,14 +16,6 @@ namespace {
 
 // ρ above which a capped-mode sample counts as not converged: the warm mode's tolerance.
 constexpr double kNewtonConverged = 1e-12;
-
-void require_shape(const char* what, const Eigen::MatrixXd& matrix, Eigen::Index rows, Eigen::Index cols) {
-  if (matrix.rows() != rows || matrix.cols() != cols) {
-    throw Error(std::string("sdre: ") + what + " is " + std::to_string(matrix.rows()) + "x" +
-                std::to_string(matrix.cols()) + ", the model needs " + std::to_string(rows) + "x" +
-                std::to_string(cols));
-  }
-}
 
 }  // namespace
 
@@ -36,10 +29,10 @@ SdreController::SdreController(const SdcPlant& model, SdreSettings settings)
   if (settings_.newton_iterations < 1 || settings_.newton_iterations > 20) {
     throw Error("sdre: newton_iterations must be in [1, 20], got " + std::to_string(settings_.newton_iterations));
   }
-  require_shape("Q", settings_.Q, n, n);
-  require_shape("R", settings_.R, m, m);
+  require_matrix_shape("sdre", "Q", settings_.Q, n, n);
+  require_matrix_shape("sdre", "R", settings_.R, m, m);
   if (settings_.initial_input.size() == 0) settings_.initial_input = Eigen::VectorXd::Zero(m);
-  require_shape("initial_input", settings_.initial_input, m, 1);
+  require_matrix_shape("sdre", "initial_input", settings_.initial_input, m, 1);
   // Q and R are checked in full by every CARE solve; R⁻¹ is needed here for u = −R⁻¹BᵀPv even
   // when a solve fails, so R's definiteness is checked once, now.
   const Eigen::LLT<Eigen::MatrixXd> llt(settings_.R);
@@ -70,11 +63,11 @@ SdreController::SdreController(const SdcPlant& model, SdreSettings settings)
 
 std::string SdreController::name() const {
   switch (settings_.mode) {
-    case SdreSettings::Mode::cold: return "sdre-cold";
-    case SdreSettings::Mode::warm: return "sdre-warm";
-    case SdreSettings::Mode::capped: return "sdre-capped";
+    case SdreSettings::Mode::cold: return kName + std::string("-cold");
+    case SdreSettings::Mode::warm: return kName + std::string("-warm");
+    case SdreSettings::Mode::capped: return kName + std::string("-capped");
   }
-  return "sdre";
+  return kName;
 }
 
 std::unique_ptr<Controller> SdreController::clone() const { return std::make_unique<SdreController>(*this); }
@@ -222,8 +215,8 @@ std::unique_ptr<Controller> make_sdre(const Settings& fields, const ControllerCo
       [settings](const SdcPlant& error_form) { return std::make_unique<SdreController>(error_form, settings); });
 }
 
-const ControllerRegistration registration(
-    "sdre", "state-dependent Riccati equation, one CARE per sample (Eq. 37); settings: mode (cold|warm|capped), "
+const ControllerRegistration sdre_registration = register_controller<SdreController>(
+    "state-dependent Riccati equation, one CARE per sample (Eq. 37); settings: mode (cold|warm|capped), "
             "newton_iterations (capped: Newton steps per pass, 1-20, default 2), "
             "fixed_point_iterations, Q, R, feedforward (none|velocity|velocity+trim), certificates (off|on)",
     make_sdre);

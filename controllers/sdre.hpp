@@ -61,7 +61,7 @@ struct SdreSettings {
   bool certificates = false;
 };
 
-class SdreController final : public Controller {
+class SdreController final : public NamedController<"sdre"> {
  public:
   // Keeps a reference to the model: it must outlive the controller and its clones.
   // Throws thetad::Error on settings that do not fit the model.

@@ -10,6 +10,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "controllers/feedforward_controller.hpp"
+#include "controllers/matrix_setting.hpp"
 #include "controllers/registry.hpp"
 #include "settings/settings.hpp"
 #include "core/error.hpp"
@@ -18,14 +19,6 @@
 namespace thetad {
 
 namespace {
-
-std::string shape(Eigen::Index rows, Eigen::Index cols) { return std::to_string(rows) + "x" + std::to_string(cols); }
-
-void require_shape(const char* what, const Eigen::MatrixXd& M, Eigen::Index rows, Eigen::Index cols) {
-  if (M.rows() != rows || M.cols() != cols)
-    throw Error(std::string("theta-d: ") + what + " must be " + shape(rows, cols) + ", got " + shape(M.rows(), M.cols()));
-  if (!M.allFinite()) throw Error(std::string("theta-d: ") + what + " has non-finite entries");
-}
 
 // Empty means "all 1" (docs/model.md §8.1); otherwise one entry per term beyond T0.
 Eigen::VectorXd series_parameter(const char* what, const Eigen::VectorXd& given, int count) {
@@ -40,8 +33,7 @@ Eigen::VectorXd series_parameter(const char* what, const Eigen::VectorXd& given,
 // The design defaults come with the context, not from the controller: for the helicopter the
 // paper's weights (Eqs. 33–34) and u0 = [m g, 0, 0, 0, 0], the rotor at hover thrust on the
 // ground (docs/model.md §8.1).
-const ControllerRegistration registration(
-    "theta-d",
+const ControllerRegistration theta_d_registration = register_controller<ThetaDController>(
     "theta-D series T0 + ... + T_{N-1} around the initial state (docs/model.md §7, §8.1); settings: terms, k, l, "
     "fixed_point_iterations, fixed_point_tolerance, Q, R, feedforward (none|velocity|velocity+trim), "
     "certificates (off|on)",
@@ -85,10 +77,10 @@ ThetaDController::ThetaDController(const SdcPlant& model, ThetaDSettings setting
   settings_.k = series_parameter("k", settings_.k, settings_.terms - 1);
   settings_.l = series_parameter("l", settings_.l, settings_.terms - 1);
   if ((settings_.l.array() < 0.0).any()) throw Error("theta-d: every l_i must be >= 0 (e_i must settle, Eq. 25)");
-  require_shape("Q", settings_.Q, n, n);
-  require_shape("R", settings_.R, m, m);
+  require_matrix_shape("theta-d", "Q", settings_.Q, n, n);
+  require_matrix_shape("theta-d", "R", settings_.R, m, m);
   if (settings_.initial_input.size() == 0) settings_.initial_input = Eigen::VectorXd::Zero(m);
-  require_shape("initial_input", settings_.initial_input, m, 1);
+  require_matrix_shape("theta-d", "initial_input", settings_.initial_input, m, 1);
 
   // R = L Lᵀ once: every g R⁻¹ gᵀ below is a product of the scaled factors g L⁻ᵀ.
   const Eigen::LLT<Eigen::MatrixXd> llt(settings_.R);

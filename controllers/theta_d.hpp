@@ -59,13 +59,12 @@ struct ThetaDSettings {
   bool certificates = false;
 };
 
-class ThetaDController final : public Controller {
+class ThetaDController final : public NamedController<"theta-d"> {
  public:
   // Keeps a reference to the model: it must outlive the controller and its clones.
   // Throws thetad::Error on settings that do not fit the model.
   ThetaDController(const SdcPlant& model, ThetaDSettings settings);
 
-  std::string name() const override { return "theta-d"; }
   std::unique_ptr<Controller> clone() const override;
 
   // Offline part of docs/model.md §8.1: A0, g0 at (x0; u0), T0 from (22a), Ac0 and its Lyapunov solver.

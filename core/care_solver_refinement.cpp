@@ -8,6 +8,7 @@
 #include "core/care_diagnosis.hpp"
 #include "core/care_solver_workspace.hpp"
 #include "core/error.hpp"
+#include "core/machine_epsilon.hpp"
 
 namespace thetad {
 namespace {
@@ -17,8 +18,6 @@ using Eigen::MatrixXd;
 using care::Candidate;
 using care::kRefineAbove;
 using care::MatrixRef;
-
-constexpr double kEps = std::numeric_limits<double>::epsilon();
 
 // The compensated Newton steps are considered when the terms A'P, PA and PGP exceed Q by more than
 // this, i.e. when the residual of the exact solution rounded to double precision, about eps times

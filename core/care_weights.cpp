@@ -3,18 +3,16 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <limits>
 #include <utility>
 
 #include "core/error.hpp"
+#include "core/machine_epsilon.hpp"
 
 namespace thetad::care {
 namespace {
 
 using Eigen::Index;
 using Eigen::MatrixXd;
-
-constexpr double kEps = std::numeric_limits<double>::epsilon();
 
 // Smallest and largest eigenvalue of a symmetric matrix. Weights are usually diagonal: a diagonal
 // needs no eigensolver.

@@ -14,6 +14,7 @@
 #include "core/care_weights.hpp"
 #include "core/error.hpp"
 #include "core/lyapunov.hpp"
+#include "core/machine_epsilon.hpp"
 
 namespace thetad {
 namespace {
@@ -22,8 +23,6 @@ using Eigen::Index;
 using Eigen::MatrixXd;
 using care::MatrixRef;
 using care::num;
-
-constexpr double kEps = std::numeric_limits<double>::epsilon();
 
 [[noreturn]] void fail(const std::string& what) { care::fail("DARE", what); }
 
@@ -118,16 +117,16 @@ std::string nearest_pencil_eigenvalue(const Reduced& r) {
 }
 
 // A solution X with what it is judged by: its gain, closed loop and residual.
-struct Candidate {
+struct DareCandidate {
   MatrixXd X, K, closed_loop, residual;
   double residual_norm = 0.0;
   double terms = 0.0;  // ‖Q‖_F + ‖A‖_F²‖X‖_F + ‖X‖_F: the size of what the residual sums
 };
 
 // Refuses an X at which R + B'XB is not positive definite (no minimum in u).
-Candidate evaluate(const MatrixRef& A, const MatrixRef& B, const MatrixRef& Q, const MatrixRef& R, const MatrixRef& S,
+DareCandidate evaluate(const MatrixRef& A, const MatrixRef& B, const MatrixRef& Q, const MatrixRef& R, const MatrixRef& S,
                    const MatrixXd& X) {
-  Candidate c;
+  DareCandidate c;
   c.X = X;
   const MatrixXd XB = X * B;
   const MatrixXd curvature = symmetric_part(R + B.transpose() * XB);
@@ -153,7 +152,7 @@ Candidate evaluate(const MatrixRef& A, const MatrixRef& B, const MatrixRef& Q, c
 // Measured against 50-digit solutions, it takes the doubling's X from 3.6e-9 to 2.6e-16 relative
 // error with the closed loop at 1 − 1e-10, and from 1.9e-14 to 2.1e-15 on a random n = 8
 // (docs/python.md). nullopt when Ac + I or the Lyapunov operator is singular.
-std::optional<MatrixXd> newton_step(const Candidate& c) {
+std::optional<MatrixXd> newton_step(const DareCandidate& c) {
   const Index n = c.X.rows();
   const Eigen::PartialPivLU<MatrixXd> shifted(c.closed_loop + MatrixXd::Identity(n, n));
   if (!(shifted.rcond() > kEps)) return std::nullopt;
@@ -171,11 +170,11 @@ std::optional<MatrixXd> newton_step(const Candidate& c) {
 // and the rounding of forming it; then the refusal of an X that does not stabilize.
 DareResult finish(const MatrixRef& A, const MatrixRef& B, const MatrixRef& Q, const MatrixRef& R, const MatrixRef& S,
                   const MatrixXd& X, int doublings) {
-  Candidate best = evaluate(A, B, Q, R, S, X);
+  DareCandidate best = evaluate(A, B, Q, R, S, X);
   int refinements = 0;
   if (const std::optional<MatrixXd> refined = newton_step(best)) {
     try {
-      Candidate next = evaluate(A, B, Q, R, S, *refined);
+      DareCandidate next = evaluate(A, B, Q, R, S, *refined);
       const double rounding = static_cast<double>(X.rows()) * kEps * best.terms;
       if (next.residual_norm <= std::max(best.residual_norm, rounding)) {
         best = std::move(next);

@@ -1,14 +1,10 @@
 #include "core/lyapunov_certificate.hpp"
 
 #include <cmath>
-#include <limits>
+
+#include "core/machine_epsilon.hpp"
 
 namespace thetad {
-namespace {
-
-constexpr double kEps = std::numeric_limits<double>::epsilon();
-
-}  // namespace
 
 LyapunovCertificate::LyapunovCertificate(Eigen::Index n) : M_(n, n), cholesky_(n) {}
 

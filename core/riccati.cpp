@@ -18,6 +18,7 @@
 #include "core/lapack.hpp"
 #include "core/lyapunov.hpp"
 #include "core/lyapunov_certificate.hpp"
+#include "core/machine_epsilon.hpp"
 #include "core/matrix_sign.hpp"
 
 namespace thetad {
@@ -33,8 +34,6 @@ using care::fail;
 using care::kStabilizabilityHint;
 using care::num;
 using care::Weights;
-
-constexpr double kEps = std::numeric_limits<double>::epsilon();
 
 static_assert(sizeof(lapack_int) == sizeof(int) && sizeof(lapack_logical) == sizeof(int),
               "CareSolver stores LAPACK integers as int");

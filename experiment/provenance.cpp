@@ -7,17 +7,22 @@
 
 namespace thetad {
 
-nlohmann::ordered_json to_json(const Provenance& p) {
+nlohmann::ordered_json to_json(const BuildInfo& build) {
   nlohmann::ordered_json j;
-  j["thetad_version"] = p.build.version;
-  j["git_revision"] = p.build.git_revision;
-  j["build_type"] = p.build.build_type;
-  j["compiler"] = p.build.compiler;
-  j["compiler_flags"] = p.build.flags;
-  j["eigen"] = p.build.eigen;
-  j["lapack_linked"] = p.build.lapack;
-  j["blas_loaded"] = p.build.blas_loaded;
-  j["lapack_loaded"] = p.build.lapack_loaded;
+  j["thetad_version"] = build.version;
+  j["git_revision"] = build.git_revision;
+  j["build_type"] = build.build_type;
+  j["compiler"] = build.compiler;
+  j["compiler_flags"] = build.flags;
+  j["eigen"] = build.eigen;
+  j["lapack_linked"] = build.lapack;
+  j["blas_loaded"] = build.blas_loaded;
+  j["lapack_loaded"] = build.lapack_loaded;
+  return j;
+}
+
+nlohmann::ordered_json to_json(const Provenance& p) {
+  nlohmann::ordered_json j = to_json(p.build);
   j["plant"] = p.plant;
   j["scenario"] = {{"name", p.scenario_name}, {"file", p.scenario_file}, {"sha256", p.scenario_sha256}};
   if (!p.scenario_text.empty()) j["scenario"]["text"] = p.scenario_text;

@@ -39,6 +39,8 @@ struct Provenance {
   std::string start_time;  // UTC, ISO 8601
 };
 
+// The build's fields, under the names a result's provenance gives them.
+nlohmann::ordered_json to_json(const BuildInfo& build);
 nlohmann::ordered_json to_json(const Provenance& provenance);
 // The host name and the current UTC time, filled into `provenance`.
 void stamp_host_and_time(Provenance& provenance);

@@ -16,8 +16,10 @@
 #include "core/helicopter/uncertainty.hpp"
 #include "core/sim/simulator.hpp"
 #include "core/trim.hpp"
+#include "experiment/demo_diagnostics.hpp"
 #include "python/arrays.hpp"
 #include "python/bindings.hpp"
+#include "python/values.hpp"
 
 namespace thetad::python {
 
@@ -147,6 +149,12 @@ void bind_model(py::module_& module) {
       "linearize", [](const heli::Helicopter& plant, py::handle x, py::handle u) { return exact_linearization(plant, x, u); },
       py::arg("plant"), py::arg("x"), py::arg("u"),
       "The plant's exact Jacobians at (x, u), from its hand-written derivatives: A, B = thetad.linearize(plant, x, u).");
+
+  module.def(
+      "demo", [] { return to_python(demo_json(demo_diagnostics())); },
+      "What `thetad demo` checks before anything flies, as demo.json holds it: the CARE at the initial state with "
+      "the paper's weights (residual, closed-loop poles, diag T0), Newton-Kleinman from 1.01 P, the hover trim at "
+      "3.5 m, and the build.");
 
   module.def(
       "uncertainty_draw", [](std::uint64_t seed) { return report_rows(draw(seed).report); }, py::arg("seed"),

@@ -68,14 +68,8 @@ std::unique_ptr<Controller> make_example_pid(const Settings& fields, const Contr
   return std::make_unique<ExamplePidController>(hover, std::move(gains), p.mass, p.gravity);
 }
 
-// Built into thetad as "example-pid"; its plug-in build (controllers/examples/pid-plugin) registers
-// under another name, since the program it is loaded into has the built-in one already.
-#ifndef THETAD_EXAMPLE_PID_NAME
-#define THETAD_EXAMPLE_PID_NAME "example-pid"
-#endif
-
-const ControllerRegistration registration(
-    THETAD_EXAMPLE_PID_NAME, "cascaded PID around the hover trim (the template for your own controller); settings: "
+const ControllerRegistration example_pid_registration = register_controller<ExamplePidController>(
+    "cascaded PID around the hover trim (the template for your own controller); settings: "
                    "position_gains, altitude_gains ([kp, ki, kd]), roll_gains, pitch_gains, yaw_gains ([k, k_rate])",
     make_example_pid);
 

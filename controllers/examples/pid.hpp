@@ -37,13 +37,19 @@ struct PidGains {
   Eigen::Vector2d yaw{0.073, 0.029};         // δ_ped per rad of heading error, per rad/s of r: ṙ ≈ −218 δ_ped
 };
 
-class ExamplePidController final : public Controller {
+// Built into thetad as "example-pid"; its plug-in build (controllers/examples/pid-plugin) is named
+// otherwise, since the program it is loaded into has the built-in one already.
+#ifndef THETAD_EXAMPLE_PID_NAME
+#define THETAD_EXAMPLE_PID_NAME "example-pid"
+#endif
+
+// The name is written once, here: register_controller<ExamplePidController> (pid.cpp) takes it.
+class ExamplePidController final : public NamedController<THETAD_EXAMPLE_PID_NAME> {
  public:
   // Flies around `hover` (its attitude and inputs are the feed-forward); mass and gravity turn
   // the vertical acceleration command into thrust.
   ExamplePidController(const Trim& hover, PidGains gains, double mass, double gravity);
 
-  std::string name() const override { return "example-pid"; }
   std::unique_ptr<Controller> clone() const override { return std::make_unique<ExamplePidController>(*this); }
   void reset(const Eigen::VectorXd&, double) override {}  // no state of its own
   void control(double t, const Eigen::Ref<const Eigen::VectorXd>& measured_state, const Reference& reference,

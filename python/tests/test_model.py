@@ -119,3 +119,23 @@ def test_reprs_say_what_an_object_is(hover_trim):
     assert repr(hover_trim).startswith("Trim(input=array([")
     built = thetad.controller("theta-d", label="mine")
     assert repr(built) == "RegisteredController(label='mine', controller='theta-d')"
+
+
+def test_demo_gives_what_thetad_demo_writes():
+    """The diagnostics of `thetad demo` from the library: the CARE at the initial state solved to
+    rounding level, Newton-Kleinman agreeing with it, and a hover trim that holds m g of thrust
+    at about 172 rad/s (docs/model.md §8.1, §4.2)."""
+    demo = thetad.demo()
+    assert list(demo) == ["riccati", "newton_kleinman", "hover_trim", "build"]
+    riccati = demo["riccati"]
+    assert (riccati["n"], riccati["m"]) == (18, 5)
+    assert riccati["relative_residual"] < 1e-10
+    assert riccati["slowest_closed_loop_real_part"] < 0
+    assert min(riccati["diag_T0"]) > 0
+    assert demo["newton_kleinman"]["relative_difference_to_schur"] < 1e-10
+    trim = demo["hover_trim"]
+    mass_times_gravity = thetad.Helicopter().design_defaults().input[0]
+    assert trim["residual"] < 1e-8
+    assert abs(trim["input"][0] - mass_times_gravity) < 0.02 * mass_times_gravity
+    assert 165 < trim["rotor_speed_rad_s"] < 180
+    assert demo["build"]["thetad_version"] == thetad.__version__

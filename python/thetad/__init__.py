@@ -50,6 +50,7 @@ from ._thetad import (  # noqa: E402  (after the data folder is known)
     controller,
     controllers,
     dare,
+    demo,
     dlqr,
     input_names,
     linearize,

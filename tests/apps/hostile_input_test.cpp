@@ -25,13 +25,13 @@ using ::testing::MatchesRegex;
 using ::testing::Not;
 using thetad::testing::Output;
 
-void write(const fs::path& file, const std::string& text) { std::ofstream(file, std::ios::binary) << text; }
+using thetad::testing::write_text;
 
 constexpr const char* kHover = "name: tiny\nduration: 0.2\nphases:\n  - name: hover\n    type: hold\n    time: [0, 0.2]\n";
 
 class HostileInput : public ::testing::Test {
  protected:
-  void SetUp() override { write(dir_ / "hover.yaml", kHover); }
+  void SetUp() override { write_text(dir_ / "hover.yaml", kHover); }
 
   Output thetad(const std::string& arguments) const { return thetad::testing::run_thetad(dir_, arguments); }
   std::string path(const std::string& name) const { return (dir_ / name).string(); }
@@ -52,7 +52,7 @@ class HostileInput : public ::testing::Test {
 };
 
 TEST_F(HostileInput, AnImpossibleDurationIsRefusedBeforeFlyingNamingTheField) {
-  write(dir_ / "long.yaml", std::string(kHover) + "simulation:\n  duration: 1e308\n");
+  write_text(dir_ / "long.yaml", std::string(kHover) + "simulation:\n  duration: 1e308\n");
   Output output = thetad(run("long.yaml", "lqr"));
   expect_refused(output);
   EXPECT_THAT(output.err, HasSubstr(path("long.yaml") + ":8:13: field 'simulation.duration'"));
@@ -67,7 +67,7 @@ TEST_F(HostileInput, AnImpossibleDurationIsRefusedBeforeFlyingNamingTheField) {
 
 TEST_F(HostileInput, ADesignFailureNamesTheControllerTheSettingsFileAndTheReason) {
   // Q = 0 leaves the integral states (eigenvalues 0) unobserved: no stabilising CARE solution.
-  write(dir_ / "zero-q.yaml", "theta-d:\n  Q: [0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0]\n");
+  write_text(dir_ / "zero-q.yaml", "theta-d:\n  Q: [0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0]\n");
   const Output output = thetad(run("hover.yaml", "blind=theta-d:" + path("zero-q.yaml")));
   expect_refused(output);
   EXPECT_THAT(output.err, HasSubstr("controller 'blind' (theta-d, settings " + path("zero-q.yaml") + ":2:3)"));
@@ -75,7 +75,7 @@ TEST_F(HostileInput, ADesignFailureNamesTheControllerTheSettingsFileAndTheReason
 }
 
 TEST_F(HostileInput, ADtThatDoesNotDivideTheControllerPeriodNamesTheField) {
-  write(dir_ / "dt.yaml", std::string(kHover) + "simulation:\n  dt: 0.0003\n");
+  write_text(dir_ / "dt.yaml", std::string(kHover) + "simulation:\n  dt: 0.0003\n");
   const Output output = thetad(run("dt.yaml", "lqr"));
   expect_refused(output);
   EXPECT_THAT(output.err, HasSubstr(path("dt.yaml") + ":8:7: field 'simulation.dt'"));
@@ -101,7 +101,7 @@ TEST_F(HostileInput, AnOutOfRangeSimulationSettingInAScenarioNamesTheFileAndTheF
        ":8:7: field 'simulation.dt': 1e-13 s: more than 2^31 - 1 plant steps per controller period"},
   };
   for (const auto& bad : cases) {
-    write(dir_ / bad.file, bad.text);
+    write_text(dir_ / bad.file, bad.text);
     const Output output = thetad(run(bad.file, "lqr"));
     expect_refused(output);
     EXPECT_THAT(output.err, HasSubstr(path(bad.file) + bad.where));
@@ -109,13 +109,13 @@ TEST_F(HostileInput, AnOutOfRangeSimulationSettingInAScenarioNamesTheFileAndTheF
 }
 
 TEST_F(HostileInput, ASettingsBlockOfTheWrongTypeIsReportedUnderTheBlocksName) {
-  write(dir_ / "number.yaml", "theta-d: 5\n");
+  write_text(dir_ / "number.yaml", "theta-d: 5\n");
   Output output = thetad(run("hover.yaml", "theta-d:" + path("number.yaml")));
   expect_refused(output);
   EXPECT_THAT(output.err, HasSubstr(path("number.yaml") + ":1:10: field 'theta-d': expected a map of fields, got '5'"));
 
   // A block this run does not fly, through --settings.
-  write(dir_ / "list.yaml", "lqr: {}\nsdre: [1, 2]\n");
+  write_text(dir_ / "list.yaml", "lqr: {}\nsdre: [1, 2]\n");
   output = thetad(run("hover.yaml", "lqr") + " --settings " + path("list.yaml"));
   expect_refused(output);
   EXPECT_THAT(output.err, HasSubstr(path("list.yaml") + ":2:7: field 'sdre': expected a map of fields, got a sequence"));
@@ -126,7 +126,7 @@ TEST_F(HostileInput, AnEmptyLabelIsRefused) {
   expect_refused(output);
   EXPECT_THAT(output.err, HasSubstr("controller '=theta-d': an empty label before '='"));
 
-  write(dir_ / "controllers.yaml", "controllers:\n  - label: ''\n    controller: lqr\n");
+  write_text(dir_ / "controllers.yaml", "controllers:\n  - label: ''\n    controller: lqr\n");
   output = thetad("compare --scenario " + path("hover.yaml") + " --controllers-file " + path("controllers.yaml") +
                   " --out " + path("out"));
   expect_refused(output);
@@ -163,19 +163,19 @@ TEST_F(HostileInput, SeedsAreUnsigned64BitNumbersOrAnError) {
     expect_refused(output);
     EXPECT_THAT(output.err, HasSubstr("--seed")) << seed;
   }
-  write(dir_ / "seed.yaml", std::string(kHover) + "simulation:\n  seed: -1\n");
+  write_text(dir_ / "seed.yaml", std::string(kHover) + "simulation:\n  seed: -1\n");
   const Output output = thetad(run("seed.yaml", "lqr"));
   expect_refused(output);
   EXPECT_THAT(output.err, HasSubstr(path("seed.yaml") + ":8:9: field 'simulation.seed'"));
 }
 
 TEST_F(HostileInput, ADuplicateKeyNamesBothLines) {
-  write(dir_ / "dup.yaml", "theta-d:\n  terms: 3\n  fixed_point_iterations: 2\n  terms: 2\n");
+  write_text(dir_ / "dup.yaml", "theta-d:\n  terms: 3\n  fixed_point_iterations: 2\n  terms: 2\n");
   Output output = thetad(run("hover.yaml", "theta-d:" + path("dup.yaml")));
   expect_refused(output);
   EXPECT_THAT(output.err, HasSubstr(path("dup.yaml") + ":4:3: key 'terms' given twice in one map (first at line 2)"));
 
-  write(dir_ / "dup-scenario.yaml", std::string(kHover) + "duration: 0.1\n");
+  write_text(dir_ / "dup-scenario.yaml", std::string(kHover) + "duration: 0.1\n");
   output = thetad(run("dup-scenario.yaml", "lqr"));
   expect_refused(output);
   EXPECT_THAT(output.err, HasSubstr(path("dup-scenario.yaml") + ":7:1: key 'duration' given twice in one map (first at line 2)"));
@@ -211,28 +211,28 @@ TEST_F(HostileInput, AnInputFileOverTheSizeCapIsRefusedUnread) {
 }
 
 TEST_F(HostileInput, ATypoInABlockThatThisRunDoesNotFlyIsFoundNow) {
-  write(dir_ / "settings.yaml", "theta-d:\n  terms: 3\nsdre:\n  mdoe: warm\n");
+  write_text(dir_ / "settings.yaml", "theta-d:\n  terms: 3\nsdre:\n  mdoe: warm\n");
   Output output = thetad(run("hover.yaml", "theta-d:" + path("settings.yaml")));
   expect_refused(output);
   EXPECT_THAT(output.err, HasSubstr(path("settings.yaml") + ":4:3: field 'mdoe'"));
 
   // The same through --settings, and a bad value rather than a bad key.
-  write(dir_ / "settings.yaml", "lqr: {}\nsdre:\n  mode: warn\n");
+  write_text(dir_ / "settings.yaml", "lqr: {}\nsdre:\n  mode: warn\n");
   output = thetad(run("hover.yaml", "lqr") + " --settings " + path("settings.yaml"));
   expect_refused(output);
   EXPECT_THAT(output.err, HasSubstr(path("settings.yaml") + ":3:9: field 'mode'"));
 }
 
 TEST_F(HostileInput, NamesMustBeValidUtf8) {
-  write(dir_ / "name.yaml", "name: \"bad\xff\"\n" + std::string(kHover).substr(std::string(kHover).find('\n') + 1));
+  write_text(dir_ / "name.yaml", "name: \"bad\xff\"\n" + std::string(kHover).substr(std::string(kHover).find('\n') + 1));
   Output output = thetad(run("name.yaml", "lqr"));
   expect_refused(output);
   EXPECT_THAT(output.err, HasSubstr(path("name.yaml") + ":1:11: not valid UTF-8"));
 }
 
 TEST_F(HostileInput, AControllerThatThrowsOrReturnsNanFailsItsRunAndTheOthersGoOn) {
-  write(dir_ / "faults.yaml", "faulty:\n  fault: throw\n  at: 0.05\n");
-  write(dir_ / "nan.yaml", "faulty:\n  fault: nan\n  at: 0.1\n");
+  write_text(dir_ / "faults.yaml", "faulty:\n  fault: throw\n  at: 0.05\n");
+  write_text(dir_ / "nan.yaml", "faulty:\n  fault: nan\n  at: 0.1\n");
   const Output output = thetad("compare --plugin " + std::string(THETAD_FAULTY_PLUGIN) + " --scenario " + path("hover.yaml") +
                                " --controllers thrower=faulty:" + path("faults.yaml") + ",lqr,nan=faulty:" + path("nan.yaml") +
                                " --out " + path("out"));

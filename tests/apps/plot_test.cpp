@@ -23,15 +23,15 @@ using ::testing::HasSubstr;
 using ::testing::Not;
 
 using thetad::testing::Output;
-std::string read(const fs::path& file) { return thetad::testing::read_text(file); }
+using thetad::testing::read_text;
 
-void write(const fs::path& file, const std::string& text) { std::ofstream(file, std::ios::binary) << text; }
+using thetad::testing::write_text;
 
 void replace_once(const fs::path& file, const std::string& from, const std::string& to) {
-  std::string text = read(file);
+  std::string text = read_text(file);
   const auto at = text.find(from);
   ASSERT_NE(at, std::string::npos) << from << " not in " << file;
-  write(file, text.replace(at, from.size(), to));
+  write_text(file, text.replace(at, from.size(), to));
 }
 
 Output thetad(const fs::path& directory, const std::string& arguments, const std::string& environment = "") {
@@ -51,7 +51,7 @@ class Plot : public ::testing::Test {
   static void SetUpTestSuite() {
     scratch_.emplace("thetad_plot_test");
     root_ = scratch_->path();
-    write(root_ / "climb.yaml",
+    write_text(root_ / "climb.yaml",
           "name: climb\nduration: 2\nphases:\n  - name: climb\n    type: ramp\n    time: [0, 2]\n    to: [0, 0, 0.5]\n");
     compare_ = thetad(root_, "compare --scenario " + (root_ / "climb.yaml").string() +
                                  " --controllers lqr,example-pid --seed 1 --out " + (root_ / "runs").string());
@@ -98,8 +98,8 @@ TEST_F(Plot, DrawsEveryFigureAsValidPngAndSvg) {
   // Two formats: the second once printed matplotlib's layout warning (the 3-D figure).
   EXPECT_THAT(output.err, Not(HasSubstr("Warning"))) << output.err;
   for (const auto& figure : kFigures) {
-    const std::string png = read(dir_ / "figures" / (figure + ".png"));
-    const std::string svg = read(dir_ / "figures" / (figure + ".svg"));
+    const std::string png = read_text(dir_ / "figures" / (figure + ".png"));
+    const std::string svg = read_text(dir_ / "figures" / (figure + ".svg"));
     EXPECT_EQ(png.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8)) << figure;
     EXPECT_GT(png.size(), 1000u) << figure;
     EXPECT_EQ(svg.substr(0, 5), "<?xml") << figure;
@@ -122,7 +122,7 @@ TEST_F(Plot, LabelledRunsWithoutTimingDrawEveryFigure) {
   const Output output = thetad(dir_, "plot --in " + (dir_ / "untimed").string() + " --out " + (dir_ / "figures").string());
   ASSERT_EQ(output.status, 0) << output.err;
   for (const auto& figure : kFigures) EXPECT_TRUE(fs::exists(dir_ / "figures" / (figure + ".png"))) << figure;
-  EXPECT_THAT(read(dir_ / "figures" / "position.svg"), HasSubstr("hover"));
+  EXPECT_THAT(read_text(dir_ / "figures" / "position.svg"), HasSubstr("hover"));
 }
 
 // Results of earlier format_versions draw as they did: version 3 as an earlier thetad wrote it
@@ -137,11 +137,11 @@ TEST_F(Plot, ResultsOfEarlierFormatVersionsDrawEveryFigure) {
     fs::copy_file(fixture / file, dir_ / "v3" / file);
     fs::copy_file(fixture / file, dir_ / "v1" / file);
   }
-  auto result = nlohmann::ordered_json::parse(read(fixture / "theta-d.json"));
+  auto result = nlohmann::ordered_json::parse(read_text(fixture / "theta-d.json"));
   result.erase("format_version");
   result["log"].erase("columns");
   result["provenance"]["scenario"].erase("text");
-  write(dir_ / "v1" / "theta-d.json", result.dump(2));
+  write_text(dir_ / "v1" / "theta-d.json", result.dump(2));
   for (const char* version : {"v3", "v1"}) {
     const fs::path figures = dir_ / (std::string(version) + "-figures");
     const Output output = thetad(dir_, "plot --in " + (dir_ / version).string() + " --out " + figures.string());
@@ -154,7 +154,7 @@ TEST_F(Plot, ResultsOfEarlierFormatVersionsDrawEveryFigure) {
 TEST_F(Plot, DrawsPdfOnRequest) {
   const Output output = plot("--format pdf --baseline example-pid");
   ASSERT_EQ(output.status, 0) << output.err;
-  for (const auto& figure : kFigures) EXPECT_EQ(read(dir_ / "figures" / (figure + ".pdf")).substr(0, 5), "%PDF-") << figure;
+  for (const auto& figure : kFigures) EXPECT_EQ(read_text(dir_ / "figures" / (figure + ".pdf")).substr(0, 5), "%PDF-") << figure;
   EXPECT_EQ(std::distance(fs::directory_iterator(dir_ / "figures"), fs::directory_iterator()), kFigures.size());
 }
 
@@ -222,22 +222,22 @@ TEST_F(Plot, MissingColumnIsRejected) {
 
 TEST_F(Plot, MalformedSummaryJsonIsRejected) {
   fs::remove(dir_ / "runs" / "comparison.json");
-  write(dir_ / "runs" / "lqr.json", "{\"controller\": \"lqr\",");
+  write_text(dir_ / "runs" / "lqr.json", "{\"controller\": \"lqr\",");
   expect_rejected("lqr.json: not valid JSON");
 }
 
 TEST_F(Plot, ComparisonWithoutRunsListIsRejected) {
-  write(dir_ / "runs" / "comparison.json", "{\"scenario\": {\"name\": \"climb\"}}");
+  write_text(dir_ / "runs" / "comparison.json", "{\"scenario\": {\"name\": \"climb\"}}");
   expect_rejected("comparison.json: not a thetad comparison");
 }
 
 TEST_F(Plot, FailingScriptLeavesAnExistingOutputDirectoryAsItWas) {
   fs::create_directories(dir_ / "figures");
-  write(dir_ / "figures" / "position.png", "old");
+  write_text(dir_ / "figures" / "position.png", "old");
   const Output output = plot("", "THETAD_PYTHON=/bin/false");
   EXPECT_EQ(output.status, 1);
   EXPECT_THAT(output.err, HasSubstr("plot_run.py failed (exit status 1)"));
-  EXPECT_EQ(read(dir_ / "figures" / "position.png"), "old");
+  EXPECT_EQ(read_text(dir_ / "figures" / "position.png"), "old");
   EXPECT_EQ(std::distance(fs::directory_iterator(dir_ / "figures"), fs::directory_iterator()), 1);
 }
 

@@ -19,6 +19,10 @@ inline std::string read_text(const std::filesystem::path& file) {
   return text.str();
 }
 
+inline void write_text(const std::filesystem::path& file, const std::string& text) {
+  std::ofstream(file, std::ios::binary) << text;
+}
+
 struct Output {
   int status = -1;
   std::string out;

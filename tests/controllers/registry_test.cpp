@@ -203,11 +203,13 @@ TEST(ControllerRegistry, TheSettingsAsUsedHoldEveryFieldGivenOrDefault) {
   EXPECT_FALSE(scheduled["table"]) << "a designed schedule has no table file";
 }
 
-// u = −gain · (the first m states): a controller as small as a plug-in's, to register from a test.
+// u = −gain · (the first m states): a controller as small as a plug-in's, to register from a test
+// under names chosen at run time.
 class ProportionalController final : public Controller {
  public:
-  ProportionalController(double gain, Eigen::Index inputs) : gain_(gain), inputs_(inputs) {}
-  std::string name() const override { return "proportional"; }
+  ProportionalController(std::string name, double gain, Eigen::Index inputs)
+      : name_(std::move(name)), gain_(gain), inputs_(inputs) {}
+  std::string name() const override { return name_; }
   std::unique_ptr<Controller> clone() const override { return std::make_unique<ProportionalController>(*this); }
   void reset(const Eigen::VectorXd&, double) override {}
   void control(double, const Eigen::Ref<const Eigen::VectorXd>& x, const Reference&,
@@ -216,13 +218,18 @@ class ProportionalController final : public Controller {
   }
 
  private:
+  std::string name_;
   double gain_;
   Eigen::Index inputs_;
 };
 
-std::unique_ptr<Controller> make_proportional(const Settings& settings, const ControllerContext& context) {
-  settings.allow_only({"gain"});
-  return std::make_unique<ProportionalController>(settings.number("gain", 1.0), context.plant.input_dim());
+// Registered as `name`, it calls itself that unless its settings say otherwise (calls_itself).
+ControllerFactory proportional(const std::string& name) {
+  return [name](const Settings& settings, const ControllerContext& context) -> std::unique_ptr<Controller> {
+    settings.allow_only({"gain", "calls_itself"});
+    return std::make_unique<ProportionalController>(settings.string("calls_itself", name), settings.number("gain", 1.0),
+                                                    context.plant.input_dim());
+  };
 }
 
 // A plug-in built against another interface version, an empty name or a taken one is refused, by
@@ -262,22 +269,38 @@ TEST(ControllerRegistry, ARegistrationRecordsTheOriginItWasMadeIn) {
   const std::string run = std::to_string(++repetition);
   {
     const RegistrationOrigin outer("plugin /path/to/libouter.so");
-    registry.add("origin-outer-" + run, "registered in a scope", make_proportional, kPluginInterfaceVersion);
+    registry.add("origin-outer-" + run, "registered in a scope", proportional("origin-outer-" + run),
+                 kPluginInterfaceVersion);
     {
       const RegistrationOrigin inner("plugin /path/to/libinner.so");
       const ControllerRegistration registration("origin-inner-" + run, "registered in a nested scope",
-                                                make_proportional);
+                                                proportional("origin-inner-" + run));
     }
-    registry.add("origin-outer-again-" + run, "registered after the nested scope ended", make_proportional,
-                 kPluginInterfaceVersion);
+    registry.add("origin-outer-again-" + run, "registered after the nested scope ended",
+                 proportional("origin-outer-again-" + run), kPluginInterfaceVersion);
   }
-  registry.add("origin-after-" + run, "registered after every scope ended", make_proportional, kPluginInterfaceVersion);
+  registry.add("origin-after-" + run, "registered after every scope ended", proportional("origin-after-" + run),
+               kPluginInterfaceVersion);
   EXPECT_EQ(registry.origin("origin-outer-" + run), "plugin /path/to/libouter.so");
   EXPECT_EQ(registry.origin("origin-inner-" + run), "plugin /path/to/libinner.so");
   EXPECT_EQ(registry.origin("origin-outer-again-" + run), "plugin /path/to/libouter.so");
   EXPECT_EQ(registry.origin("origin-after-" + run), "built-in");
   EXPECT_THAT([&] { registry.origin("nonesuch"); },
               ::testing::ThrowsMessage<Error>(HasSubstr("unknown controller 'nonesuch' (known: ")));
+
+  // What a run records (name()) is what the user asked for, or it plus a variant's suffix.
+  const heli::Helicopter model;
+  const std::string name = "origin-after-" + run;
+  EXPECT_EQ(registry.make(name, {}, hover_context(model))->name(), name);
+  EXPECT_EQ(registry.make(name, YAML::Load("calls_itself: " + name + "-fast"), hover_context(model))->name(),
+            name + "-fast");
+  for (const std::string& other : {std::string("proportional"), name + "fast", std::string("origin-after")}) {
+    EXPECT_THAT([&] { registry.make(name, YAML::Load("calls_itself: " + other), hover_context(model)); },
+                ::testing::ThrowsMessage<Error>(HasSubstr("controller '" + name + "' (built-in) built a controller "
+                                                          "that calls itself '" + other + "': derive it from "
+                                                          "NamedController<\"" + name + "\">")))
+        << other;
+  }
 }
 
 }  // namespace

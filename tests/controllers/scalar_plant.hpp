@@ -7,6 +7,9 @@
 #include <functional>
 #include <utility>
 
+#include <Eigen/Core>
+
+#include "controllers/sdre.hpp"
 #include "core/sdc_plant.hpp"
 
 namespace thetad::testing {
@@ -42,5 +45,12 @@ class ScalarPlant final : public SdcPlant {
   std::function<double(double, double)> b_;
   bool input_dependent_;
 };
+
+// The SDRE's input at time t and state x on a ScalarPlant.
+inline double sdre_control_at(SdreController& sdre, double t, double x) {
+  Eigen::VectorXd u(1);
+  sdre.control(t, Eigen::VectorXd::Constant(1, x), Reference{}, u);
+  return u(0);
+}
 
 }  // namespace thetad::testing

@@ -28,12 +28,6 @@ SdreSettings capped(int steps) {
   return settings;
 }
 
-double control_at(SdreController& sdre, double t, double x) {
-  Eigen::VectorXd u(1);
-  sdre.control(t, Eigen::VectorXd::Constant(1, x), Reference{}, u);
-  return u(0);
-}
-
 // ẋ = x² x + u, q = r = 1: one Newton step from P0 at a = x² solves 2(a − P0)P + 1 + P0² = 0.
 double newton_step(double x, double P0) { return (1.0 + P0 * P0) / (2.0 * (P0 - x * x)); }
 
@@ -46,7 +40,7 @@ TEST(SdreCapped, StartsFromTheColdSolutionAtTheResetStateAndTakesExactlyItsSteps
     double P = plant.riccati(0.5, 0.0, 1.0, 1.0);  // the design point's P, whatever the first sample
     for (const double x : {0.3, 0.35, 0.4}) {
       for (int k = 0; k < steps; ++k) P = newton_step(x, P);
-      EXPECT_NEAR(control_at(sdre, 0.0, x), -P * x, 1e-14) << steps << " steps, x = " << x;
+      EXPECT_NEAR(testing::sdre_control_at(sdre, 0.0, x), -P * x, 1e-14) << steps << " steps, x = " << x;
     }
     EXPECT_EQ(sdre.fallback_count(), 0);
   }
@@ -59,10 +53,10 @@ TEST(SdreCapped, LogsTheResidualOfEachSampleAndCountsTheUnconverged) {
   ASSERT_EQ(sdre.certificate_columns().size(), 1U);
   EXPECT_EQ(sdre.certificate_columns()[0].column.name, "newton_residual");
   std::vector<double> row;
-  control_at(sdre, 0.0, 0.0);  // at the design point: P is the solution already
+  testing::sdre_control_at(sdre, 0.0, 0.0);  // at the design point: P is the solution already
   sdre.certificate_values(row);
   EXPECT_LE(row.at(0), 1e-15);
-  control_at(sdre, 0.001, 0.8);  // one step from far away leaves a residual
+  testing::sdre_control_at(sdre, 0.001, 0.8);  // one step from far away leaves a residual
   sdre.certificate_values(row);
   EXPECT_GT(row.at(1), 1e-6);
   const auto counters = sdre.counters();
@@ -77,7 +71,7 @@ TEST(SdreCapped, FallsBackToAColdSolveWhenAStepCannotStart) {
   const ScalarPlant plant([](double x) { return x * x; }, [](double, double) { return 1.0; }, false);
   SdreController sdre(plant, capped(2));
   sdre.reset(Eigen::VectorXd::Zero(1), 0.0);
-  EXPECT_NEAR(control_at(sdre, 0.0, 2.0), -plant.riccati(2.0, 0.0, 1.0, 1.0) * 2.0, 1e-12);
+  EXPECT_NEAR(testing::sdre_control_at(sdre, 0.0, 2.0), -plant.riccati(2.0, 0.0, 1.0, 1.0) * 2.0, 1e-12);
   EXPECT_EQ(sdre.fallback_count(), 1);
   std::vector<double> row;
   sdre.certificate_values(row);

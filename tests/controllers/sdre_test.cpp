@@ -24,12 +24,6 @@ SdreSettings scalar_settings(SdreSettings::Mode mode, double q = 1.0, double r =
   return settings;
 }
 
-double control_at(SdreController& sdre, double t, double x) {
-  Eigen::VectorXd u(1);
-  sdre.control(t, Eigen::VectorXd::Constant(1, x), Reference{}, u);
-  return u(0);
-}
-
 SdreSettings paper_settings(const heli::Helicopter& model, SdreSettings::Mode mode) {
   SdreSettings settings = testing::design_settings<SdreSettings>(model);
   settings.mode = mode;
@@ -52,7 +46,7 @@ TEST(Sdre, RegulatesAScalarPlantWithTheClosedFormGain) {
   SdreController sdre(plant, scalar_settings(SdreSettings::Mode::cold));
   sdre.reset(Eigen::VectorXd::Zero(1), 0.0);
   for (const double x : {0.0, 0.5, -1.2, 2.0}) {
-    EXPECT_NEAR(control_at(sdre, 0.0, x), -plant.riccati(x, 0.0, 1.0, 1.0) * x, 1e-12) << "x = " << x;
+    EXPECT_NEAR(testing::sdre_control_at(sdre, 0.0, x), -plant.riccati(x, 0.0, 1.0, 1.0) * x, 1e-12) << "x = " << x;
   }
   EXPECT_EQ(sdre.last_iterations(), 1);  // no input dependence: one pass is exact
 }
@@ -66,7 +60,7 @@ TEST(Sdre, IteratesInputDependentCoefficientsToTheFixedPoint) {
   exact.fixed_point_tolerance = 1e-13;
   SdreController converged(plant, exact);
   converged.reset(Eigen::VectorXd::Zero(1), 0.0);
-  const double u = control_at(converged, 0.0, x);
+  const double u = testing::sdre_control_at(converged, 0.0, x);
   const double b = 1.0 + 0.25 * u * u;
   EXPECT_NEAR(u, -plant.riccati(x, u, 1.0, 1.0) * b * x, 1e-12);  // u = −R⁻¹ B(u)ᵀ P(u) x
   EXPECT_GT(converged.last_iterations(), 2);
@@ -75,7 +69,7 @@ TEST(Sdre, IteratesInputDependentCoefficientsToTheFixedPoint) {
   lag.fixed_point_iterations = 1;  // one-step lag: B at the previously applied input (0 at first)
   SdreController lagging(plant, lag);
   lagging.reset(Eigen::VectorXd::Zero(1), 0.0);
-  EXPECT_NEAR(control_at(lagging, 0.0, x), -plant.riccati(x, 0.0, 1.0, 1.0) * x, 1e-12);
+  EXPECT_NEAR(testing::sdre_control_at(lagging, 0.0, x), -plant.riccati(x, 0.0, 1.0, 1.0) * x, 1e-12);
   EXPECT_EQ(lagging.last_iterations(), 1);
 }
 
@@ -149,12 +143,12 @@ TEST(Sdre, WarmModeFallsBackToAColdSolveWhenTheLastSolutionDoesNotStabilize) {
   const ScalarPlant plant([](double x) { return x * x; }, [](double, double) { return 1.0; }, false);
   SdreController sdre(plant, scalar_settings(SdreSettings::Mode::warm));
   sdre.reset(Eigen::VectorXd::Zero(1), 0.0);
-  control_at(sdre, 0.0, 0.0);
+  testing::sdre_control_at(sdre, 0.0, 0.0);
   EXPECT_EQ(sdre.fallback_count(), 0);
-  EXPECT_NEAR(control_at(sdre, 0.001, 2.0), -plant.riccati(2.0, 0.0, 1.0, 1.0) * 2.0, 1e-12);
+  EXPECT_NEAR(testing::sdre_control_at(sdre, 0.001, 2.0), -plant.riccati(2.0, 0.0, 1.0, 1.0) * 2.0, 1e-12);
   EXPECT_EQ(sdre.fallback_count(), 1);
   EXPECT_EQ(sdre.failure_count(), 0);
-  control_at(sdre, 0.002, 2.01);  // close to the last state: Newton from the last P converges
+  testing::sdre_control_at(sdre, 0.002, 2.01);  // close to the last state: Newton from the last P converges
   EXPECT_EQ(sdre.fallback_count(), 1);
   const auto counters = sdre.counters();
   ASSERT_EQ(counters.size(), 2U);
@@ -170,9 +164,9 @@ TEST(Sdre, KeepsTheLastSolutionWhereNoSolverSucceedsAndCountsIt) {
   for (const auto mode : {SdreSettings::Mode::cold, SdreSettings::Mode::warm}) {
     SdreController sdre(plant, scalar_settings(mode));
     sdre.reset(Eigen::VectorXd::Zero(1), 0.0);
-    control_at(sdre, 0.0, 1.0);
+    testing::sdre_control_at(sdre, 0.0, 1.0);
     const double P = sdre.last_value_matrix()(0, 0);
-    EXPECT_EQ(control_at(sdre, 0.001, 3.0), 0.0);  // B(3) = 0: the kept P gives no input
+    EXPECT_EQ(testing::sdre_control_at(sdre, 0.001, 3.0), 0.0);  // B(3) = 0: the kept P gives no input
     EXPECT_EQ(sdre.failure_count(), 1);
     EXPECT_EQ(sdre.fallback_count(), mode == SdreSettings::Mode::warm ? 1 : 0);
     EXPECT_EQ(sdre.last_value_matrix()(0, 0), P);
@@ -183,7 +177,7 @@ TEST(Sdre, AFailureAtTheFirstSampleThrows) {
   const ScalarPlant plant([](double) { return 1.0; }, [](double x, double) { return 1.0 - x / 3.0; }, false);
   SdreController sdre(plant, scalar_settings(SdreSettings::Mode::cold));
   sdre.reset(Eigen::VectorXd::Zero(1), 0.0);
-  EXPECT_THROW(control_at(sdre, 0.0, 3.0), Error);
+  EXPECT_THROW(testing::sdre_control_at(sdre, 0.0, 3.0), Error);
 }
 
 TEST(Sdre, RejectsSettingsThatDoNotFitTheModel) {

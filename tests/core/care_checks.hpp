@@ -5,6 +5,8 @@
 // EigenSolver, self-adjoint eigensolver and LLT were instantiated and optimized again in each of
 // the eight tests that include it, ~9 s of compile each (docs/performance-log.md, 2026-12-02).
 
+#include <utility>
+
 #include <Eigen/Dense>
 
 #include "core/riccati.hpp"
@@ -13,6 +15,10 @@ namespace thetad::testing {
 
 // A 1×1 matrix: scalar equations in the CARE tests.
 inline Eigen::MatrixXd scalar(double v) { return Eigen::MatrixXd::Constant(1, 1, v); }
+
+// Every method of solve_care, with its name for messages.
+inline constexpr std::pair<CareMethod, const char*> kCareMethods[] = {
+    {CareMethod::automatic, "automatic"}, {CareMethod::matrix_sign, "matrix_sign"}, {CareMethod::schur, "schur"}};
 
 // Expects `result` to be the stabilizing solution of A'P + PA − PBR⁻¹B'P + Q = 0:
 //  - P exactly symmetric and positive semi-definite (min eig ≥ −tol·‖P‖₂);

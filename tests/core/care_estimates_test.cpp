@@ -17,7 +17,9 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "core/machine_epsilon.hpp"
 #include "core/riccati.hpp"
+#include "tests/core/care_checks.hpp"
 #include "tests/core/care_fixture.hpp"
 
 namespace thetad {
@@ -25,10 +27,6 @@ namespace {
 
 using Eigen::MatrixXd;
 
-constexpr double kEps = std::numeric_limits<double>::epsilon();
-
-const std::pair<CareMethod, const char*> kMethods[] = {
-    {CareMethod::automatic, "automatic"}, {CareMethod::matrix_sign, "matrix_sign"}, {CareMethod::schur, "schur"}};
 
 std::vector<testing::Fixture> reference_fixtures() {
   const std::filesystem::path dir = std::filesystem::path(THETAD_SOURCE_DIR) / "tests/fixtures/care_reference";
@@ -52,7 +50,7 @@ TEST(CareEstimates, ForwardErrorEstimateTracksTheTrueError) {
     const MatrixXd& R = f.matrices.at("R");
     const MatrixXd& exact = f.matrices.at("P_exact");
     const double rounding = 100.0 * static_cast<double>(A.rows()) * kEps;
-    for (const auto& [method, method_name] : kMethods) {
+    for (const auto& [method, method_name] : testing::kCareMethods) {
       SCOPED_TRACE(method_name);
       CareResult result;
       try {
@@ -110,7 +108,7 @@ TEST(CareEstimates, OffLeavesThemNaNAndPUnchanged) {
   const MatrixXd& B = f.matrices.at("B");
   const MatrixXd& Q = f.matrices.at("Q");
   const MatrixXd& R = f.matrices.at("R");
-  for (const auto& [method, method_name] : kMethods) {
+  for (const auto& [method, method_name] : testing::kCareMethods) {
     SCOPED_TRACE(method_name);
     const CareResult plain = solve_care(A, B, Q, R, method);
     EXPECT_TRUE(std::isnan(plain.forward_error));

@@ -42,9 +42,6 @@ Equation random_equation(Eigen::Index n, Eigen::Index m, std::mt19937_64& rng) {
   return e;
 }
 
-const std::pair<CareMethod, const char*> kMethods[] = {
-    {CareMethod::automatic, "automatic"}, {CareMethod::matrix_sign, "matrix_sign"}, {CareMethod::schur, "schur"}};
-
 void expect_identical(const CareResult& a, const CareResult& b) {
   EXPECT_EQ(a.P, b.P);
   EXPECT_EQ(a.K, b.K);
@@ -63,7 +60,7 @@ TEST(CareSolver, SameAnswerAsSolveCareOverSeveralSolvesWithoutAllocating) {
     Equation second = random_equation(n, m, rng);
     second.Q = first.Q;
     second.R = first.R;
-    for (const auto& [method, method_name] : kMethods) {
+    for (const auto& [method, method_name] : testing::kCareMethods) {
       SCOPED_TRACE("n=" + std::to_string(n) + " " + method_name);
       CareSolver solver(first.Q, first.R, method);
       for (const Equation* e : std::initializer_list<const Equation*>{&first, &second, &first}) {
@@ -89,7 +86,7 @@ TEST(CareSolver, TheLyapunovCertificateReplacesOnlyTheEigensolver) {
   for (const auto& [n, m] : {std::pair<Eigen::Index, Eigen::Index>{6, 2}, {18, 5}, {60, 20}}) {
     std::mt19937_64 rng(static_cast<std::uint64_t>(100 * n + m));
     const Equation e = random_equation(n, m, rng);
-    for (const auto& [method, method_name] : kMethods) {
+    for (const auto& [method, method_name] : testing::kCareMethods) {
       SCOPED_TRACE("n=" + std::to_string(n) + " " + method_name);
       const CareResult expected = solve_care(e.A, e.B, e.Q, e.R, method);
       CareSolver solver(e.Q, e.R, method, StabilityProof::lyapunov);
@@ -120,7 +117,7 @@ TEST(CareSolver, RefusesWhatSolveCareRefuses) {
   const MatrixXd B = Eigen::Vector2d(1, 0);
   const MatrixXd Q = MatrixXd::Identity(2, 2);
   const MatrixXd R = testing::scalar(1);
-  for (const auto& entry : kMethods) {
+  for (const auto& entry : testing::kCareMethods) {
     // Not a structured binding: Clang 14 cannot capture one in a lambda.
     const auto method = entry.first;
     SCOPED_TRACE(entry.second);

@@ -12,6 +12,8 @@
 
 #include <Eigen/Dense>
 
+#include "core/machine_epsilon.hpp"
+#include "tests/core/care_checks.hpp"
 #include "tests/error_message.hpp"
 #include "tests/linear_algebra.hpp"
 
@@ -21,10 +23,7 @@ namespace {
 using Eigen::MatrixXd;
 using ::testing::HasSubstr;
 using testing::error_message;
-
-constexpr double kEps = std::numeric_limits<double>::epsilon();
-
-MatrixXd scalar(double v) { return MatrixXd::Constant(1, 1, v); }
+using testing::scalar;
 
 // Expects `result` to be the stabilizing solution: X exactly symmetric, the normwise residual
 // ‖A'XA − X − (A'XB + S)K + Q‖_F / (‖Q‖_F + ‖A‖_F²‖X‖_F + ‖X‖_F) within `tol`·n·ε, K = (R +

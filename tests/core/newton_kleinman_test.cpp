@@ -19,6 +19,7 @@
 
 #include "bench/care_problems.hpp"
 #include "core/error.hpp"
+#include "core/machine_epsilon.hpp"
 #include "core/riccati.hpp"
 #include "tests/core/care_checks.hpp"
 #include "tests/error_message.hpp"
@@ -35,9 +36,6 @@ using ::testing::HasSubstr;
 using testing::error_message;
 using testing::scalar;
 using testing::expect_valid_care;
-
-constexpr double kEps = std::numeric_limits<double>::epsilon();
-
 
 // The documented formula, evaluated here independently of the solver, in long double with G
 // formed explicitly. Not in double: there, forming G = B R⁻¹ B' and P G P loses what the residual

@@ -28,14 +28,12 @@ using Eigen::MatrixXd;
 using Eigen::VectorXd;
 using ::testing::HasSubstr;
 using testing::error_message;
+using testing::kCareMethods;
 using testing::scalar;
 using testing::expect_valid_care;
 using testing::Fixture;
 using testing::read_fixture;
 
-
-const std::pair<CareMethod, const char*> kMethods[] = {
-    {CareMethod::automatic, "automatic"}, {CareMethod::matrix_sign, "matrix_sign"}, {CareMethod::schur, "schur"}};
 
 // The cost x'Qx + u'Ru + 2x'Nu: A'P + PA − (PB + N)R⁻¹(B'P + N') + Q = 0 and K = R⁻¹(B'P + N').
 TEST(SolveCare, CrossTerm) {
@@ -65,7 +63,7 @@ TEST(SolveCare, DoubleIntegratorClosedForm) {
   const MatrixXd R = scalar(1);
   MatrixXd expected(2, 2);
   expected << std::sqrt(3.0), 1, 1, std::sqrt(3.0);
-  for (const auto& [method, method_name] : kMethods) {
+  for (const auto& [method, method_name] : kCareMethods) {
     const CareResult result = solve_care(A, B, Q, R, method);
     expect_valid_care(A, B, Q, R, result);
     EXPECT_LE((result.P - expected).norm(), 1e-14 * expected.norm()) << method_name;
@@ -78,7 +76,7 @@ TEST(SolveCare, ScalarClosedForm) {
   const double cases[][4] = {{2, 1, 1, 1}, {-1, 1, 0, 1}, {-3, 0.5, 4, 2}, {10, 3, 1e4, 1e-2}, {0, 1, 1, 1}};
   for (const auto& [a, b, q, r] : cases) {
     const double expected = r * (a + std::sqrt(a * a + b * b * q / r)) / (b * b);
-    for (const auto& [method, method_name] : kMethods) {
+    for (const auto& [method, method_name] : kCareMethods) {
       const CareResult result = solve_care(scalar(a), scalar(b), scalar(q), scalar(r), method);
       expect_valid_care(scalar(a), scalar(b), scalar(q), scalar(r), result);
       EXPECT_NEAR(result.P(0, 0), expected, 1e-14 * std::max(1.0, expected))
@@ -113,7 +111,7 @@ TEST(SolveCare, RandomStabilizableSystems) {
       const MatrixXd R = M * M.transpose() + 0.1 * MatrixXd::Identity(m, m);
       if (testing::max_real_eigenvalue(A) > 0) ++unstable_systems;
       SCOPED_TRACE("n=" + std::to_string(n) + " m=" + std::to_string(m));
-      for (const auto& [method, method_name] : kMethods) {
+      for (const auto& [method, method_name] : kCareMethods) {
         SCOPED_TRACE(method_name);
         expect_valid_care(A, B, Q, R, solve_care(A, B, Q, R, method));
       }
@@ -197,7 +195,7 @@ TEST(SolveCare, PaperSizedCaseMatchesSpec) {
   const PaperPlant plant;
   // automatic takes the sign function here (docs/riccati.md: faster than SB02MD).
   EXPECT_GT(solve_care(plant.A, plant.B, plant.Q, plant.R).sign_iterations, 0);
-  for (const auto& [method, method_name] : kMethods) {
+  for (const auto& [method, method_name] : kCareMethods) {
     SCOPED_TRACE(method_name);
     expect_paper_solution(plant, solve_care(plant.A, plant.B, plant.Q, plant.R, method));
   }
@@ -255,7 +253,7 @@ TEST(SolveCare, CarexBenchmarks) {
     const MatrixXd& R = f.matrices.at("R");
     const bool exact = f.matrices.count("X_exact") > 0;
     const MatrixXd& reference = exact ? f.matrices.at("X_exact") : f.matrices.at("P");
-    for (const auto& [method, method_name] : kMethods) {
+    for (const auto& [method, method_name] : kCareMethods) {
       SCOPED_TRACE(method_name);
       if (!expect.sign_applies && method == CareMethod::matrix_sign) {
         EXPECT_THROW(solve_care(A, B, Q, R, method), Error);

@@ -11,16 +11,17 @@
 #include <Eigen/SVD>
 
 #include "core/error.hpp"
+#include "tests/core/care_checks.hpp"
 #include "tests/linear_algebra.hpp"
 
 namespace thetad {
 namespace {
 
 using Eigen::MatrixXd;
+using testing::scalar;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-MatrixXd scalar(double value) { return MatrixXd::Constant(1, 1, value); }
 
 TEST(StabilizabilityMargin, OfAnUnstableScalarIsTheInputOverRootR) {
   // λ = a: σ_min [a − a, b / √r] = |b| / √r, whatever a > 0.

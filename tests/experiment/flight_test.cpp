@@ -16,6 +16,7 @@
 #include "experiment/run_files.hpp"
 #include "experiment/sha256.hpp"
 #include "tests/error_message.hpp"
+#include "tests/run_seconds.hpp"
 #include "tests/scratch_directory.hpp"
 
 namespace thetad {
@@ -23,14 +24,9 @@ namespace {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
+using testing::seconds;
 
 const std::string kScenario = THETAD_SOURCE_DIR "/scenarios/scenario-1.yaml";
-
-RunControls seconds(double duration) {
-  RunControls controls;
-  controls.duration = duration;
-  return controls;
-}
 
 std::string read(const fs::path& file) {
   std::ifstream in(file, std::ios::binary);

@@ -11,18 +11,14 @@
 #include "experiment/flight.hpp"
 #include "tests/controllers/scalar_plant.hpp"
 #include "tests/error_message.hpp"
+#include "tests/run_seconds.hpp"
 #include "tests/test_plants.hpp"
 
 namespace thetad {
 namespace {
 
 using ::testing::HasSubstr;
-
-RunControls seconds(double duration) {
-  RunControls controls;
-  controls.duration = duration;
-  return controls;
-}
+using testing::seconds;
 
 RunResult fly(std::shared_ptr<const SdcPlant> plant, const char* spec, const Eigen::VectorXd& x0,
               const RunControls& controls) {

@@ -16,7 +16,7 @@
 namespace thetad {
 namespace {
 
-const FixedPosition kOrigin(Eigen::Vector3d::Zero());
+const FixedPosition kHoldAtOrigin(Eigen::Vector3d::Zero());
 
 // The exact block of interval k at (node, u) against central differences of the interval map.
 double derivative_error(ShootingInterval& interval, int k, const Eigen::VectorXd& node, const Eigen::VectorXd& u) {
@@ -126,7 +126,7 @@ TEST(ShootingInterval, APlantWithoutJacobianIsRefusedClearly) {
   const NoJacobianPlant plant;
   OptimalControlProblem problem;
   problem.plant = &plant;
-  problem.reference = &kOrigin;
+  problem.reference = &kHoldAtOrigin;
   problem.initial_state = Eigen::VectorXd::Ones(1);
   problem.state_weights = problem.input_weights = Eigen::VectorXd::Ones(1);
   ShootingInterval interval(problem);

@@ -8,11 +8,10 @@
 
 namespace {
 
-class TestOnlyController : public thetad::Controller {
+class TestOnlyController : public thetad::NamedController<"test-only"> {
  public:
   explicit TestOnlyController(Eigen::VectorXd trim) : trim_(std::move(trim)) {}
 
-  std::string name() const override { return "test-only"; }
   void reset(const Eigen::VectorXd&, double) override {}
   void control(double, const Eigen::Ref<const Eigen::VectorXd>&, const thetad::Reference&,
                Eigen::Ref<Eigen::VectorXd> u) override {
@@ -25,8 +24,8 @@ class TestOnlyController : public thetad::Controller {
   Eigen::VectorXd trim_;
 };
 
-const thetad::ControllerRegistration registration(
-    "test-only", "holds the design point's input (a test plug-in: a controller known to no list)",
+const thetad::ControllerRegistration registration = thetad::register_controller<TestOnlyController>(
+    "holds the design point's input (a test plug-in: a controller known to no list)",
     [](const thetad::Settings& settings, const thetad::ControllerContext& context) -> std::unique_ptr<thetad::Controller> {
       settings.allow_only({});
       if (context.settings_only) return nullptr;

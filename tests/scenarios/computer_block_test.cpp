@@ -16,11 +16,11 @@ using ::testing::HasSubstr;
 using thetad::testing::error_message;
 using Computer = sim::FlightComputerSettings;
 
-const std::string kFile = "name: test\nduration: 5\nphases:\n  - {name: hold, type: hold, time: [0, 5]}\nsimulation:\n";
+const std::string kHoldThenComputer = "name: test\nduration: 5\nphases:\n  - {name: hold, type: hold, time: [0, 5]}\nsimulation:\n";
 
-Scenario scenario_of(const std::string& simulation) { return parse_scenario(kFile + simulation, "dir/test.yaml"); }
+Scenario scenario_of(const std::string& simulation) { return parse_scenario(kHoldThenComputer + simulation, "dir/test.yaml"); }
 
-std::string error_of(const std::string& simulation) {
+std::string computer_error_of(const std::string& simulation) {
   return error_message([&] { scenario_of(simulation); });
 }
 
@@ -52,20 +52,20 @@ TEST(ComputerBlock, StepTimesByLabelOrABenchFileResolvedNextToTheScenario) {
 }
 
 TEST(ComputerBlock, MistakesAreRefusedNamingTheField) {
-  EXPECT_THAT(error_of("  computer: {latency: fixed}\n"), HasSubstr("simulation.computer.fixed"));
-  EXPECT_THAT(error_of("  computer: {latency: fixed, fixed: 0.001, slowdown: 3}\n"),
+  EXPECT_THAT(computer_error_of("  computer: {latency: fixed}\n"), HasSubstr("simulation.computer.fixed"));
+  EXPECT_THAT(computer_error_of("  computer: {latency: fixed, fixed: 0.001, slowdown: 3}\n"),
               HasSubstr("simulation.computer.slowdown"));
-  EXPECT_THAT(error_of("  computer: {latency: measured, fixed: 0.001}\n"), HasSubstr("only with latency: fixed"));
-  EXPECT_THAT(error_of("  computer: {latency: step-time}\n"), HasSubstr("simulation.computer.bench"));
-  EXPECT_THAT(error_of("  computer: {latency: step-time, bench: b.json, step_times: {a: 1e-6}}\n"),
+  EXPECT_THAT(computer_error_of("  computer: {latency: measured, fixed: 0.001}\n"), HasSubstr("only with latency: fixed"));
+  EXPECT_THAT(computer_error_of("  computer: {latency: step-time}\n"), HasSubstr("simulation.computer.bench"));
+  EXPECT_THAT(computer_error_of("  computer: {latency: step-time, bench: b.json, step_times: {a: 1e-6}}\n"),
               HasSubstr("one of them"));
-  EXPECT_THAT(error_of("  computer: {latency: step-time, bench: b.json, statistic: p95}\n"),
+  EXPECT_THAT(computer_error_of("  computer: {latency: step-time, bench: b.json, statistic: p95}\n"),
               HasSubstr("simulation.computer.statistic"));
-  EXPECT_THAT(error_of("  computer: {latency: step-time, step_times: {a: -1}}\n"),
+  EXPECT_THAT(computer_error_of("  computer: {latency: step-time, step_times: {a: -1}}\n"),
               HasSubstr("simulation.computer.step_times.a"));
-  EXPECT_THAT(error_of("  computer: {latency: slow}\n"), HasSubstr("simulation.computer.latency"));
-  EXPECT_THAT(error_of("  computer: {latency: measured, slowdown: 0}\n"), HasSubstr("simulation.computer.slowdown"));
-  EXPECT_THAT(error_of("  computer: {latency: fixed, fixed: 0.001, jitter: 1}\n"), HasSubstr("jitter"));
+  EXPECT_THAT(computer_error_of("  computer: {latency: slow}\n"), HasSubstr("simulation.computer.latency"));
+  EXPECT_THAT(computer_error_of("  computer: {latency: measured, slowdown: 0}\n"), HasSubstr("simulation.computer.slowdown"));
+  EXPECT_THAT(computer_error_of("  computer: {latency: fixed, fixed: 0.001, jitter: 1}\n"), HasSubstr("jitter"));
 }
 
 }  // namespace

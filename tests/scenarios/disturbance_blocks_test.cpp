@@ -15,14 +15,14 @@ namespace {
 using ::testing::HasSubstr;
 using thetad::testing::error_message;
 
-const std::string kFile = "name: test\nduration: 5\nphases:\n  - {name: hold, type: hold, time: [0, 5]}\nsimulation:\n";
+const std::string kHoldFile = "name: test\nduration: 5\nphases:\n  - {name: hold, type: hold, time: [0, 5]}\nsimulation:\n";
 
 sim::SimulationSettings settings_of(const std::string& simulation) {
-  return parse_scenario(kFile + simulation, "test.yaml").simulation_settings();
+  return parse_scenario(kHoldFile + simulation, "test.yaml").simulation_settings();
 }
 
-std::string error_of(const std::string& simulation) {
-  return error_message([&] { parse_scenario(kFile + simulation, "test.yaml"); });
+std::string simulation_error_of(const std::string& simulation) {
+  return error_message([&] { parse_scenario(kHoldFile + simulation, "test.yaml"); });
 }
 
 TEST(DisturbanceBlocks, AbsentBlocksLeaveEverythingOff) {
@@ -68,23 +68,23 @@ TEST(DisturbanceBlocks, GaussMarkovTakesItsSigmaPerAxis) {
 }
 
 TEST(DisturbanceBlocks, BadValuesNameTheFileTheFieldAndTheReason) {
-  EXPECT_THAT(error_of("  wind: {model: karman}\n"),
+  EXPECT_THAT(simulation_error_of("  wind: {model: karman}\n"),
               HasSubstr("test.yaml:6:17: field 'simulation.wind.model': expected one of paper, dryden, gauss_markov"));
-  EXPECT_THAT(error_of("  wind: {model: gauss_markov}\n"), HasSubstr("field 'simulation.wind.sigma': missing"));
-  EXPECT_THAT(error_of("  wind: {intensity: extreme}\n"), HasSubstr("field 'simulation.wind.intensity'"));
-  EXPECT_THAT(error_of("  wind: {gusts: [{axis: up, amplitude: 1, start: 0, duration: 1}]}\n"),
+  EXPECT_THAT(simulation_error_of("  wind: {model: gauss_markov}\n"), HasSubstr("field 'simulation.wind.sigma': missing"));
+  EXPECT_THAT(simulation_error_of("  wind: {intensity: extreme}\n"), HasSubstr("field 'simulation.wind.intensity'"));
+  EXPECT_THAT(simulation_error_of("  wind: {gusts: [{axis: up, amplitude: 1, start: 0, duration: 1}]}\n"),
               HasSubstr("field 'simulation.wind.gusts[0].axis': expected one of north, east, down"));
-  EXPECT_THAT(error_of("  wind: {gusts: [{axis: east, amplitude: 1, start: 0}]}\n"),
+  EXPECT_THAT(simulation_error_of("  wind: {gusts: [{axis: east, amplitude: 1, start: 0}]}\n"),
               HasSubstr("field 'simulation.wind.gusts[0].duration': missing (required)"));
-  EXPECT_THAT(error_of("  sensor_noise: {sigma: {position: 0.1}}\n"),
+  EXPECT_THAT(simulation_error_of("  sensor_noise: {sigma: {position: 0.1}}\n"),
               HasSubstr("field 'simulation.sensor_noise.bandwidth': missing"));
-  EXPECT_THAT(error_of("  sensor_noise: {density: {position: -1}}\n"),
+  EXPECT_THAT(simulation_error_of("  sensor_noise: {density: {position: -1}}\n"),
               HasSubstr("field 'simulation.sensor_noise.density.position'"));
-  EXPECT_THAT(error_of("  sensor_noise: {density: {altitude: 1}}\n"),
+  EXPECT_THAT(simulation_error_of("  sensor_noise: {density: {altitude: 1}}\n"),
               HasSubstr("field 'simulation.sensor_noise.density.altitude': unknown field"));
-  EXPECT_THAT(error_of("  servos: {time_constant: [0.1, 0.1]}\n"),
+  EXPECT_THAT(simulation_error_of("  servos: {time_constant: [0.1, 0.1]}\n"),
               HasSubstr("field 'simulation.servos.time_constant': expected 5 entries, got 2"));
-  EXPECT_THAT(error_of("  servos: {delay_samples: 1.5}\n"), HasSubstr("field 'simulation.servos.delay_samples'"));
+  EXPECT_THAT(simulation_error_of("  servos: {delay_samples: 1.5}\n"), HasSubstr("field 'simulation.servos.delay_samples'"));
 }
 
 // Table 1's parameter deviations by name (a worst case to fly again): the others 0, each in [-1, 1].
@@ -98,9 +98,9 @@ TEST(DisturbanceBlocks, ParameterDeviationsByNameReplaceTheDraw) {
     const double expected = names[i] == "m" ? -1.0 : names[i] == "I_xx" ? 0.25 : 0.0;
     EXPECT_EQ(settings.parameter_deviations[i], expected) << names[i];
   }
-  EXPECT_THAT(error_of("  disturbances:\n    parameter_deviations: {mass: 0.5}\n"),
+  EXPECT_THAT(simulation_error_of("  disturbances:\n    parameter_deviations: {mass: 0.5}\n"),
               HasSubstr("field 'simulation.disturbances.parameter_deviations.mass': not a parameter of Table 1"));
-  EXPECT_THAT(error_of("  disturbances:\n    parameter_deviations: {m: 1.5}\n"),
+  EXPECT_THAT(simulation_error_of("  disturbances:\n    parameter_deviations: {m: 1.5}\n"),
               HasSubstr("simulation.disturbances.parameter_deviations.m"));
 }
 

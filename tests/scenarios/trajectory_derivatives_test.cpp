@@ -11,8 +11,6 @@
 namespace thetad {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 // One phase of every kind, back to back, each starting away from the origin.
 PhasedTrajectory every_motion() {
   PhasedTrajectory trajectory(Eigen::Vector3d(1.0, -2.0, -3.0));
@@ -87,7 +85,7 @@ TEST(TrajectoryDerivatives, FollowTheSpeedScale) {
 TEST(TrajectoryDerivatives, TheFigureEightCrossesAtItsKnownSpeed) {
   PhasedTrajectory trajectory;
   trajectory.append("figure8", 50.0, FigureEight{8.0, 4.0, 50.0});
-  const double omega = 2.0 * kPi / 50.0;
+  const double omega = 2.0 * std::numbers::pi / 50.0;
   EXPECT_NEAR(trajectory.velocity(0.0).norm(), omega * std::sqrt(64.0 + 64.0), 1e-14);
   EXPECT_NEAR(trajectory.velocity(25.0).norm(), omega * std::sqrt(64.0 + 64.0), 1e-13);
 }

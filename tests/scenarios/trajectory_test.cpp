@@ -11,8 +11,6 @@
 namespace thetad {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 // Central-difference velocity of the command (the primitives give positions only).
 Eigen::Vector3d velocity(const ReferenceTrajectory& trajectory, double t, double h = 1e-6) {
   return (trajectory.position(t + h) - trajectory.position(t - h)) / (2.0 * h);
@@ -67,7 +65,7 @@ TEST(Trajectory, FigureEightSpansTheSpecBoxAndStartsTowardsMinusYAndPlusX) {
   // Quarter lap: the lobe end at x = +A_x; half lap: back at the crossing; extremes of y at ±A_y.
   expect_near(trajectory.position(12.0 + 12.5), {8.0, 0.0, -3.5}, 1e-9);
   expect_near(trajectory.position(12.0 + 25.0), {0.0, 0.0, -3.5}, 1e-9);
-  expect_near(trajectory.position(12.0 + 6.25), {8.0 * std::sin(kPi / 4.0), -4.0, -3.5}, 1e-9);
+  expect_near(trajectory.position(12.0 + 6.25), {8.0 * std::sin(std::numbers::pi / 4.0), -4.0, -3.5}, 1e-9);
   expect_near(trajectory.position(12.0 + 37.5), {-8.0, 0.0, -3.5}, 1e-9);
 }
 
@@ -75,7 +73,7 @@ TEST(Trajectory, FigureEightSpeedsMatchTheSpec) {
   const PhasedTrajectory trajectory = scenario_one();
   // 1.42 m/s at the crossings (start, middle, end of the 8), 1.0 m/s at the lobe ends (the spec's
   // rounded values of ω·sqrt(A_x² + 4A_y²) and 2ωA_y).
-  const double omega = 2.0 * kPi / 50.0;
+  const double omega = 2.0 * std::numbers::pi / 50.0;
   for (const double tau : {1e-4, 25.0, 50.0 - 1e-4}) {
     EXPECT_NEAR(velocity(trajectory, 12.0 + tau).norm(), omega * std::sqrt(64.0 + 64.0), 1e-6);
     EXPECT_NEAR(velocity(trajectory, 12.0 + tau).norm(), 1.42, 5e-3);
@@ -95,19 +93,19 @@ TEST(Trajectory, FigureEightSpeedsMatchTheSpec) {
 TEST(Trajectory, CircleIsCounterclockwiseWithTheSpecSpeedAndAltitudeDip) {
   const PhasedTrajectory trajectory = scenario_two();
   const Eigen::Vector2d centre(0.0, 15.0);
-  double previous_angle = -kPi / 2.0;  // the start (0, 0) seen from the centre
+  double previous_angle = -std::numbers::pi / 2.0;  // the start (0, 0) seen from the centre
   for (double tau = 1.0; tau < 60.0; tau += 1.0) {
     const Eigen::Vector3d p = trajectory.position(12.0 + tau);
     const double angle = std::atan2(p.y() - centre.y(), p.x() - centre.x());
     double increase = angle - previous_angle;
-    if (increase < -kPi) increase += 2.0 * kPi;  // unwrap at ±π
+    if (increase < -std::numbers::pi) increase += 2.0 * std::numbers::pi;  // unwrap at ±π
     EXPECT_GT(increase, 0.0) << "at tau = " << tau;
     EXPECT_NEAR((p.head<2>() - centre).norm(), 15.0, 1e-9);
     previous_angle = angle;
   }
   const Eigen::Vector3d first_motion = velocity(trajectory, 12.0 + 1e-3);
   EXPECT_GT(first_motion.x(), 0.0);
-  EXPECT_NEAR(velocity(trajectory, 12.0 + 20.0).head<2>().norm(), 15.0 * 2.0 * kPi / 60.0, 1e-6);  // 1.57 m/s
+  EXPECT_NEAR(velocity(trajectory, 12.0 + 20.0).head<2>().norm(), 15.0 * 2.0 * std::numbers::pi / 60.0, 1e-6);  // 1.57 m/s
   EXPECT_NEAR(velocity(trajectory, 12.0 + 20.0).head<2>().norm(), 1.57, 1e-3);
   expect_near(trajectory.position(12.0 + 30.0), {0.0, 30.0, -1.5}, 1e-9);  // lowest at the half circle
   expect_near(trajectory.position(72.0), {0.0, 0.0, -3.5}, 1e-9);
@@ -173,7 +171,7 @@ TEST(Trajectory, ATimeScaledTrajectoryFliesTheSamePathFaster) {
     expect_near(faster.position(200.0 / s), trajectory.position(200.0), 1e-9);
   }
   // The figure 8's crossing speed half way (t = 37 s), ω sqrt(A_x² + 4 A_y²), doubles at twice the speed.
-  const double omega = 2.0 * kPi / 50.0;
+  const double omega = 2.0 * std::numbers::pi / 50.0;
   EXPECT_NEAR(velocity(trajectory.time_scaled(2.0), 37.0 / 2.0).norm(), 2.0 * omega * std::sqrt(64.0 + 64.0), 1e-6);
   EXPECT_THROW(trajectory.time_scaled(0.0), Error);
   EXPECT_THROW(trajectory.time_scaled(-1.0), Error);
@@ -187,7 +185,7 @@ TEST(Trajectory, ATurnedTrajectoryFliesThePathOnAnotherCourse) {
   trajectory.append("accelerate", 10.0, Accelerate{Eigen::Vector3d::UnitX(), 0.0, 5.0});
   trajectory.append("climb", 14.0, Blend{{0.0, 0.0, -2.0}});
   trajectory.append("circle", 30.0, Circle{6.0, 16.0, 1.0, false});
-  const double course = kPi / 2.0;  // east
+  const double course = std::numbers::pi / 2.0;  // east
   const PhasedTrajectory east = trajectory.turned(course);
   const Eigen::Matrix3d turn = Eigen::AngleAxisd(course, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   for (double t = -1.0; t < 35.0; t += 0.41) {
@@ -202,7 +200,7 @@ TEST(Trajectory, ATurnedTrajectoryFliesThePathOnAnotherCourse) {
   expect_near(east.end_position() - trajectory.start_position(),
               turn * (trajectory.end_position() - trajectory.start_position()), 1e-12);
   // Two quarter turns make a half; a turned trajectory keeps its turn when flown faster.
-  expect_near(east.turned(course).position(12.0), trajectory.turned(kPi).position(12.0), 1e-12);
+  expect_near(east.turned(course).position(12.0), trajectory.turned(std::numbers::pi).position(12.0), 1e-12);
   expect_near(east.time_scaled(2.0).position(6.0), east.position(12.0), 1e-9);
   // No turn asked, nothing recomputed: the commands are those of the file, bit for bit.
   EXPECT_EQ(trajectory.time_scaled(1.0).position(12.3), trajectory.position(12.3));

@@ -16,7 +16,7 @@ YAML::Node block(const std::string& text) { return YAML::Load("controller:\n" + 
 
 // Runs `read` and returns the SettingsError it must throw.
 template <class Read>
-SettingsError error_of(Read read) {
+SettingsError settings_error_of(Read read) {
   try {
     read();
   } catch (const SettingsError& error) {
@@ -57,32 +57,32 @@ TEST(Settings, ReadsPresentFields) {
 
 TEST(Settings, UnknownFieldIsNamedWithItsLineAndTheAllowedOnes) {
   const Settings fields(block("  mode: warm\n  Qx: [1]\n"));
-  expect_error(error_of([&] { fields.allow_only({"mode", "Q", "R"}); }),
+  expect_error(settings_error_of([&] { fields.allow_only({"mode", "Q", "R"}); }),
                "3:3: field 'Qx': unknown field (allowed: mode, Q, R)");
 }
 
 TEST(Settings, EveryHelperNamesFieldReasonAndLine) {
   const Settings fields(block("  x: abc\n  n: 2.5\n  b: maybe\n  s: [1]\n  m: hot\n  v: [1, 2, 3]\n"
                               "  w: [1, .inf]\n  lo: -3\n  big: 99\n  Q: [1, -1]\n  R: [1, 0]\n  seq: 4\n"));
-  expect_error(error_of([&] { fields.number("x", 0); }), "2:6: field 'x': expected a number, got 'abc'");
-  expect_error(error_of([&] { fields.integer("n", 0); }), "3:6: field 'n': expected an integer, got '2.5'");
-  expect_error(error_of([&] { fields.boolean("b", false); }), "4:6: field 'b': expected true or false, got 'maybe'");
-  expect_error(error_of([&] { fields.string("s", ""); }), "5:6: field 's': expected a string, got a sequence");
-  expect_error(error_of([&] { fields.choice("m", "cold", {"cold", "warm"}); }),
+  expect_error(settings_error_of([&] { fields.number("x", 0); }), "2:6: field 'x': expected a number, got 'abc'");
+  expect_error(settings_error_of([&] { fields.integer("n", 0); }), "3:6: field 'n': expected an integer, got '2.5'");
+  expect_error(settings_error_of([&] { fields.boolean("b", false); }), "4:6: field 'b': expected true or false, got 'maybe'");
+  expect_error(settings_error_of([&] { fields.string("s", ""); }), "5:6: field 's': expected a string, got a sequence");
+  expect_error(settings_error_of([&] { fields.choice("m", "cold", {"cold", "warm"}); }),
                "6:6: field 'm': expected one of cold, warm, got 'hot'");
-  expect_error(error_of([&] { fields.vector("v", Eigen::Vector2d::Zero(), 2); }),
+  expect_error(settings_error_of([&] { fields.vector("v", Eigen::Vector2d::Zero(), 2); }),
                "7:6: field 'v': expected 2 entries, got 3");
-  expect_error(error_of([&] { fields.vector("w", Eigen::Vector2d::Zero(), 2); }),
+  expect_error(settings_error_of([&] { fields.vector("w", Eigen::Vector2d::Zero(), 2); }),
                "8:10: field 'w[1]': expected a finite number, got .inf");
-  expect_error(error_of([&] { fields.number("lo", 0, 0.0, 1.0); }),
+  expect_error(settings_error_of([&] { fields.number("lo", 0, 0.0, 1.0); }),
                "9:7: field 'lo': expected a number in [0, 1], got -3");
-  expect_error(error_of([&] { fields.integer("big", 0, 1, 10); }),
+  expect_error(settings_error_of([&] { fields.integer("big", 0, 1, 10); }),
                "10:8: field 'big': expected an integer in [1, 10], got 99");
-  expect_error(error_of([&] { fields.diagonal_weight("Q", Eigen::Vector2d::Ones(), Settings::Weight::positive_semidefinite); }),
+  expect_error(settings_error_of([&] { fields.diagonal_weight("Q", Eigen::Vector2d::Ones(), Settings::Weight::positive_semidefinite); }),
                "11:10: field 'Q[1]': expected a number in [0, inf], got -1");
-  expect_error(error_of([&] { fields.diagonal_weight("R", Eigen::Vector2d::Ones(), Settings::Weight::positive_definite); }),
+  expect_error(settings_error_of([&] { fields.diagonal_weight("R", Eigen::Vector2d::Ones(), Settings::Weight::positive_definite); }),
                "12:10: field 'R[1]': expected a positive number (the weight must be positive definite), got 0");
-  expect_error(error_of([&] { fields.vector("seq", Eigen::Vector2d::Zero(), 2); }),
+  expect_error(settings_error_of([&] { fields.vector("seq", Eigen::Vector2d::Zero(), 2); }),
                "13:8: field 'seq': expected a sequence of 2 numbers, got '4'");
 }
 
@@ -96,14 +96,14 @@ TEST(Settings, ErrorOnAMissingFieldPointsAtTheBlock) {
 }
 
 TEST(Settings, ABlockThatIsNotAMapIsRejected) {
-  expect_error(error_of([] { Settings(block("  - 1\n  - 2\n"), "controller"); }),
+  expect_error(settings_error_of([] { Settings(block("  - 1\n  - 2\n"), "controller"); }),
                "2:3: field 'controller': expected a map of fields, got a sequence");
 }
 
 TEST(Settings, NodesBuiltInCodeHaveNoPosition) {
   YAML::Node node;
   node["gain"] = "high";
-  expect_error(error_of([&] { Settings(node).number("gain", 0); }), "field 'gain': expected a number, got 'high'");
+  expect_error(settings_error_of([&] { Settings(node).number("gain", 0); }), "field 'gain': expected a number, got 'high'");
 }
 
 TEST(Settings, TheCallerAddsTheFileName) {
@@ -164,16 +164,16 @@ TEST(Settings, AListTakesAnyLengthAndIsRecorded) {
   EXPECT_TRUE(resolved["none"].IsSequence());
   EXPECT_EQ(resolved["none"].size(), 0u);
   EXPECT_EQ(resolved["absent"].as<std::vector<double>>(), (std::vector<double>{1.0, 2.0}));
-  expect_error(error_of([&] { fields.list("bad", {}); }), "4:12: field 'bad[1]': expected a number, got 'x'");
-  expect_error(error_of([&] { fields.list("scalar", {}); }),
+  expect_error(settings_error_of([&] { fields.list("bad", {}); }), "4:12: field 'bad[1]': expected a number, got 'x'");
+  expect_error(settings_error_of([&] { fields.list("scalar", {}); }),
                "5:11: field 'scalar': expected a sequence of numbers, got '3'");
-  expect_error(error_of([&] { fields.list("speeds", {}, 0.0, 3.0); }),
+  expect_error(settings_error_of([&] { fields.list("speeds", {}, 0.0, 3.0); }),
                "2:20: field 'speeds[2]': expected a number in [0, 3], got 4");
 }
 
 TEST(Settings, ANestedBlockMustBeAMapAndNamesItsPath) {
   const Settings fields(block("  grid: 3\n"));
-  expect_error(error_of([&] { fields.block("grid"); }), "2:9: field 'grid': expected a map of fields, got '3'");
+  expect_error(settings_error_of([&] { fields.block("grid"); }), "2:9: field 'grid': expected a map of fields, got '3'");
 }
 
 }  // namespace

@@ -27,7 +27,7 @@ ControllerSpec spec(const std::string& name) {
   return result;
 }
 
-RunControls one_second() {
+RunControls one_quiet_second() {
   RunControls controls;
   controls.duration = 1.0;
   controls.summary_only = true;
@@ -36,7 +36,7 @@ RunControls one_second() {
 }
 
 TEST(ParameterDeviations, ReplaceTheDrawAndMustLieInTheBox) {
-  RunControls controls = one_second();
+  RunControls controls = one_quiet_second();
   controls.parameter_deviations = std::vector<double>(21, 1.0);
   const Flight flight(kHoverHold, controls);
   PreparedController lqr = flight.prepare(spec("lqr"));
@@ -74,7 +74,7 @@ TEST(WorstCase, FindsAFlightAtLeastAsBadAsTheNominalWithinItsBudgetAndFliesItAga
     EXPECT_LE(evaluations, budget);
     reported = evaluations;
   };
-  const WorstCases cases = find_worst_cases(kHoverHold, one_second(), {spec("lqr")}, options);
+  const WorstCases cases = find_worst_cases(kHoverHold, one_quiet_second(), {spec("lqr")}, options);
   ASSERT_EQ(cases.controllers.size(), 1u);
   const WorstCase& lqr = cases.controllers[0];
   EXPECT_EQ(lqr.evaluations, reported);
@@ -105,7 +105,7 @@ TEST(WorstCase, ABudgetTheDesignSpendsEndsThere) {
   options.corners = 0;
   options.max_evaluations = 5;
   options.metric = WorstCaseMetric::cost_dev;
-  const WorstCases cases = find_worst_cases(kHoverHold, one_second(), {spec("lqr")}, options);
+  const WorstCases cases = find_worst_cases(kHoverHold, one_quiet_second(), {spec("lqr")}, options);
   EXPECT_EQ(cases.controllers[0].evaluations, 5);
   EXPECT_EQ(cases.controllers[0].stop, "the budget went to the sampled design");
   EXPECT_EQ(cases.controllers[0].worst.value, *cases.controllers[0].worst.summary.cost_dev);
