@@ -30,7 +30,7 @@ using ::testing::HasSubstr;
 using Json = nlohmann::ordered_json;
 
 // A hover with a flight computer whose latency a slowdown may scale (the step time, given here).
-constexpr const char* kScenario = R"(name: settings-table
+constexpr const char* kSettingsTableScenario = R"(name: settings-table
 duration: 4
 initial_state:
   position: [0, 0, 2]
@@ -44,10 +44,12 @@ simulation:
     step_times: {lqr: 1.0e-5}
 )";
 
-Flight flight(const RunControls& controls) { return Flight::from_text(kScenario, "settings-table.yaml", controls); }
+Flight settings_table_flight(const RunControls& controls) {
+  return Flight::from_text(kSettingsTableScenario, "settings-table.yaml", controls);
+}
 
 // What a result records of a flight before it flies: the settings and the provenance.
-Json record(const Flight& flight) {
+Json recorded_before_flying(const Flight& flight) {
   Json result;
   result["settings"] = settings_json(flight.settings());
   result["provenance"] = to_json(flight.provenance());
@@ -55,7 +57,7 @@ Json record(const Flight& flight) {
 }
 
 // The row's example as a campaign file (or, for a seed, the command line) gives it.
-RunControls example(const RunSetting& setting) {
+RunControls example_controls(const RunSetting& setting) {
   RunControls controls;
   if (setting.parse)
     setting.parse(std::string(setting.example), controls);
@@ -65,31 +67,31 @@ RunControls example(const RunSetting& setting) {
 }
 
 TEST(RunSettings, EveryRowIsRecordedAndFliesAgainFromTheResult) {
-  const Json plain = record(flight({}));
+  const Json plain = recorded_before_flying(settings_table_flight({}));
   for (const RunSetting& setting : run_settings()) {
     if (setting.value == RunSetting::Value::none) continue;
     SCOPED_TRACE(std::string(setting.name));
     ASSERT_FALSE(setting.example.empty());
-    const Flight flown = flight(example(setting));
-    const Json recorded = record(flown);
+    const Flight flown = settings_table_flight(example_controls(setting));
+    const Json recorded = recorded_before_flying(flown);
     EXPECT_NE(recorded, plain) << "the example changes nothing a result records";
-    const Flight again = flight(recorded_controls(recorded, kRunFormatVersion));
-    EXPECT_EQ(record(again), recorded);
+    const Flight again = settings_table_flight(recorded_controls(recorded, kRunFormatVersion));
+    EXPECT_EQ(recorded_before_flying(again), recorded);
     EXPECT_EQ(again.initial_state(), flown.initial_state());
     EXPECT_EQ(again.scenario().duration, flown.scenario().duration);
   }
 }
 
-// `kScenario` with the row's example under its file key (the last of several), YAML's way: a
-// switch as true or false.
-std::string with_file_key(const RunSetting& setting) {
+// kSettingsTableScenario with the row's example under its file key (the last of several), YAML's
+// way: a switch as true or false.
+std::string with_example_under_file_key(const RunSetting& setting) {
   const std::string keys(setting.file_key);
   std::vector<std::string> path;
   std::stringstream dotted(keys.substr(keys.rfind(' ') + 1));
   for (std::string key; std::getline(dotted, key, '.');) path.push_back(key);
   const std::string example = setting.value == RunSetting::Value::on_off ? (setting.example == "1" ? "true" : "false")
                                                                           : std::string(setting.example);
-  YAML::Node root = YAML::Load(kScenario);
+  YAML::Node root = YAML::Load(kSettingsTableScenario);
   YAML::Node node = root;
   for (std::size_t i = 0; i + 1 < path.size(); ++i) node.reset(node[path[i]]);
   node[path.back()] = YAML::Load(example);
@@ -104,8 +106,8 @@ TEST(RunSettings, EveryFileKeySaysInTheScenarioWhatTheControlSays) {
   for (const RunSetting& setting : run_settings()) {
     if (setting.file_key.empty() || setting.example.empty()) continue;
     SCOPED_TRACE(std::string(setting.name));
-    const Flight from_file = Flight::from_text(with_file_key(setting), "settings-table.yaml", {});
-    const Flight from_control = flight(example(setting));
+    const Flight from_file = Flight::from_text(with_example_under_file_key(setting), "settings-table.yaml", {});
+    const Flight from_control = settings_table_flight(example_controls(setting));
     EXPECT_EQ(settings_json(from_file.settings()), settings_json(from_control.settings()));
   }
 }
@@ -116,9 +118,9 @@ TEST(RunSettings, VectorsAndBlocksFlyAgainFromTheResult) {
   controls.parameter_deviations = std::vector<double>(21, 0.5);
   controls.beyond_paper.servos = sim::ServoSettings{sim::InputVector::Constant(0.03), 1};
   controls.beyond_paper.discrete_gusts = std::vector<sim::DiscreteGust>{{1, 2.0, 0.5, 1.0}};
-  const Json recorded = record(flight(controls));
+  const Json recorded = recorded_before_flying(settings_table_flight(controls));
   EXPECT_EQ(recorded["settings"]["parameter_deviations"].size(), 21u);
-  EXPECT_EQ(record(flight(recorded_controls(recorded, kRunFormatVersion))), recorded);
+  EXPECT_EQ(recorded_before_flying(settings_table_flight(recorded_controls(recorded, kRunFormatVersion))), recorded);
 }
 
 TEST(RunSettings, NamesAreUniqueAndTheFactorsAreTheRowsWithAColumn) {
