@@ -1,13 +1,12 @@
 #pragma once
 
-#include <algorithm>
-#include <cstddef>
 #include <memory>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "core/control_law.hpp"
+#include "core/fixed_string.hpp"
 
 namespace thetad {
 
@@ -23,19 +22,11 @@ class Controller : public ControlLaw {
   virtual std::unique_ptr<Controller> clone() const = 0;
 };
 
-// A string literal as a template argument: a controller's name, written once, in its class.
-template <std::size_t N>
-struct ControllerName {
-  // Implicit, so that NamedController<"name"> takes the literal itself.
-  constexpr ControllerName(const char (&text)[N]) { std::copy_n(text, N, value); }
-  char value[N];
-};
-
 // The base of a controller known by name: name() is Name, and register_controller<C>
 // (controllers/registry.hpp) registers C under it, so that the name a run records and the name
 // a user types cannot differ. A controller whose settings select a variant may override name()
 // with Name plus a suffix ("sdre-warm"); the registry accepts that and nothing else.
-template <ControllerName Name>
+template <FixedString Name>
 class NamedController : public Controller {
  public:
   static constexpr const char* kName = Name.value;

@@ -1,7 +1,6 @@
 // The rows of the run settings' table (experiment/run_settings.hpp).
 #include "experiment/run_settings.hpp"
 
-#include <algorithm>
 #include <array>
 #include <cmath>
 #include <numbers>
@@ -10,6 +9,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "core/fixed_string.hpp"
 #include "core/helicopter/uncertainty.hpp"
 #include "core/sim/seed.hpp"
 #include "experiment/disturbance_json.hpp"
@@ -65,18 +65,11 @@ RunSetting switch_row(RunSetting row) {
   return row;
 }
 
-// A row's name as a template argument, for the rows a template makes.
-template <std::size_t N>
-struct Name {
-  constexpr Name(const char (&text)[N]) { std::copy_n(text, N, chars); }
-  char chars[N];
-};
-
 // A multiplier of a disturbance's strength, finite and >= 0: the RunControls member `control` sets
 // the field of the flight's settings that `path` leads to; `row` says the rest.
-template <Name name, std::optional<double> RunControls::*control, auto... path>
+template <FixedString name, std::optional<double> RunControls::*control, auto... path>
 RunSetting scale_row(RunSetting row) {
-  row.name = name.chars;
+  row.name = name.value;
   row.value = Value::number;
   row.min = 0.0;
   row.apply = [](double v, RunControls& c) { c.*control = v; };
@@ -84,7 +77,7 @@ RunSetting scale_row(RunSetting row) {
     if (!(c.*control)) return;
     const double value = *(c.*control);
     if (!(value >= 0.0) || !std::isfinite(value))
-      throw Error(std::string(name.chars) + " " + std::to_string(value) + ": must be finite and >= 0");
+      throw Error(std::string(name.value) + " " + std::to_string(value) + ": must be finite and >= 0");
     (s .* ... .* path) = value;
   };
   if (!row.result_key.empty()) row.replay = [](const Json& v, RunControls& c) { c.*control = v.get<double>(); };
