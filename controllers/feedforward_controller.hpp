@@ -37,8 +37,8 @@ class FeedForwardController final : public Controller {
                Eigen::Ref<Eigen::VectorXd> u) override;
   std::vector<std::pair<std::string, double>> counters() const override { return inner_->counters(); }
   // The inner controller's, of its decision variable v (docs/model.md §8.4).
-  std::vector<CertificateColumn> certificate_columns() const override { return inner_->certificate_columns(); }
-  void certificate_values(std::vector<double>& row) const override { inner_->certificate_values(row); }
+  std::vector<ControllerColumn> log_columns() const override { return inner_->log_columns(); }
+  void log_values(std::vector<double>& row) const override { inner_->log_values(row); }
   int last_iterations() const override { return inner_->last_iterations(); }
 
   const Controller& inner() const { return *inner_; }

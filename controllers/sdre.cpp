@@ -170,16 +170,16 @@ std::vector<std::pair<std::string, double>> SdreController::counters() const {
   return counters;
 }
 
-std::vector<CertificateColumn> SdreController::certificate_columns() const {
-  std::vector<CertificateColumn> columns;
-  if (capped_) columns.push_back({{"newton_residual", ""}, CertificateColumn::Worst::largest});
+std::vector<ControllerColumn> SdreController::log_columns() const {
+  std::vector<ControllerColumn> columns;
+  if (capped_) columns.push_back({{"newton_residual", ""}, ControllerColumn::Worst::largest});
   if (certificates_) {
-    for (CertificateColumn& column : SdreCertificates::columns()) columns.push_back(std::move(column));
+    for (ControllerColumn& column : SdreCertificates::columns()) columns.push_back(std::move(column));
   }
   return columns;
 }
 
-void SdreController::certificate_values(std::vector<double>& row) const {
+void SdreController::log_values(std::vector<double>& row) const {
   if (capped_) row.push_back(newton_residual_);
   if (certificates_) certificates_->values(row);
 }

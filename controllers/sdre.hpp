@@ -96,8 +96,8 @@ class SdreController final : public NamedController<"sdre"> {
   std::vector<std::pair<std::string, double>> counters() const override;
   // In the capped mode newton_residual (ρ of the last pass's P; NaN when it was solved cold), then
   // SdreCertificates' columns when settings().certificates.
-  std::vector<CertificateColumn> certificate_columns() const override;
-  void certificate_values(std::vector<double>& row) const override;
+  std::vector<ControllerColumn> log_columns() const override;
+  void log_values(std::vector<double>& row) const override;
 
   // P of the last pass of the last control() (the last good one after a failure).
   const Eigen::MatrixXd& last_value_matrix() const { return P_; }

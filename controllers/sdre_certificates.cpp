@@ -21,8 +21,8 @@ SdreCertificates::SdreCertificates(const Eigen::MatrixXd& Q, const Eigen::Matrix
       forward_error_(kNan),
       stabilizability_(kNan) {}
 
-std::vector<CertificateColumn> SdreCertificates::columns() {
-  using Worst = CertificateColumn::Worst;
+std::vector<ControllerColumn> SdreCertificates::columns() {
+  using Worst = ControllerColumn::Worst;
   return {{{"condition_estimate", ""}, Worst::largest},
           {{"forward_error_estimate", ""}, Worst::largest},
           {{"stabilizability_margin", ""}, Worst::smallest}};

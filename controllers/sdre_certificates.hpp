@@ -4,7 +4,7 @@
 
 #include <Eigen/Core>
 
-#include "core/certificate_column.hpp"
+#include "core/controller_column.hpp"
 #include "core/riccati.hpp"
 #include "core/stabilizability_margin.hpp"
 
@@ -20,7 +20,7 @@ class SdreCertificates {
 
   // condition_estimate (largest is worst), forward_error_estimate (largest), stabilizability_margin
   // (smallest).
-  static std::vector<CertificateColumn> columns();
+  static std::vector<ControllerColumn> columns();
   // Never throws: where the CARE has no stabilizing solution, the condition is +inf and the
   // forward error NaN; where LAPACK fails on the margin, it is NaN. Allocates nothing on success.
   void evaluate(const Eigen::MatrixXd& F, const Eigen::MatrixXd& B);

@@ -134,12 +134,12 @@ ThetaDController::ThetaDController(const SdcPlant& model, ThetaDSettings setting
 
 std::unique_ptr<Controller> ThetaDController::clone() const { return std::make_unique<ThetaDController>(*this); }
 
-std::vector<CertificateColumn> ThetaDController::certificate_columns() const {
+std::vector<ControllerColumn> ThetaDController::log_columns() const {
   if (!settings_.certificates) return {};
-  return {{{"last_term_ratio", ""}, CertificateColumn::Worst::largest}};
+  return {{{"last_term_ratio", ""}, ControllerColumn::Worst::largest}};
 }
 
-void ThetaDController::certificate_values(std::vector<double>& row) const {
+void ThetaDController::log_values(std::vector<double>& row) const {
   if (settings_.certificates) row.push_back(last_term_ratio_);
 }
 

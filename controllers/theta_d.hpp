@@ -101,8 +101,8 @@ class ThetaDController final : public NamedController<"theta-d"> {
 
   // With settings().certificates, the column last_term_ratio (largest is worst) and its value for
   // the last control(): 1 for N = 1 (T0 is the last term), NaN when u = 0.
-  std::vector<CertificateColumn> certificate_columns() const override;
-  void certificate_values(std::vector<double>& row) const override;
+  std::vector<ControllerColumn> log_columns() const override;
+  void log_values(std::vector<double>& row) const override;
 
  private:
   void require_reset(const char* caller) const;

@@ -6,7 +6,7 @@
 
 #include <Eigen/Core>
 
-#include "core/certificate_column.hpp"
+#include "core/controller_column.hpp"
 
 namespace thetad {
 
@@ -83,12 +83,13 @@ class ControlLaw {
   // has nothing to report keeps this default (none).
   virtual std::vector<std::pair<std::string, double>> counters() const { return {}; }
 
-  // Certificates of its own answer that the law logs at every sample (docs/model.md §8.4): their
-  // columns, fixed from construction on, and their values for the last control(), appended to
-  // `row` in that order. certificate_values() is on the hot path: `row` has the capacity, nothing
-  // may allocate. A law that reports none keeps these defaults, and its log has no such columns.
-  virtual std::vector<CertificateColumn> certificate_columns() const { return {}; }
-  virtual void certificate_values(std::vector<double>& row) const { (void)row; }
+  // Columns the law writes into the run log at every sample: numbers of its own state or work, and
+  // certificates of its own answer (docs/model.md §8.4), which the run also summarizes by their
+  // worst value. log_columns() is fixed from construction on; log_values() appends the last
+  // control()'s values to `row` in that order. log_values() is on the hot path: `row` has the
+  // capacity, nothing may allocate. A law that writes none keeps these defaults.
+  virtual std::vector<ControllerColumn> log_columns() const { return {}; }
+  virtual void log_values(std::vector<double>& row) const { (void)row; }
 
   // The iterations the last control() took (θ–D's and the SDRE's fixed-point passes): the work a
   // step did, which `thetad bench` reports beside its time. A closed-form law keeps 0. Hot path: a

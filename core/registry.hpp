@@ -21,7 +21,10 @@ namespace thetad {
 //   3: SdcPlant's feed-forward hooks (bias_state, commanded_motion, trim_source) and
 //      ControllerContext's shared trims (docs/model.md §7.1).
 //   4: ControlLaw's certificate columns and values (docs/model.md §8.4).
-inline constexpr int kPluginInterfaceVersion = 5;
+//   5: ControlLaw::last_iterations().
+//   6: ControlLaw's log columns and values (log_columns, log_values), of which certificates are
+//      those with a worst (they replace version 4's certificate columns).
+inline constexpr int kPluginInterfaceVersion = 6;
 
 // Where the registrations made while one lives come from: a plug-in being loaded ("plug-in
 // /path/lib.so (sha256 ...)"); "built-in" outside one. Inside one a refused registration is kept

@@ -23,7 +23,7 @@ Json certificate_value(double value) {
 Json certificates_json(const std::vector<CertificateWorst>& certificates) {
   Json j = Json::object();
   for (const CertificateWorst& worst : certificates) {
-    const bool largest = worst.certificate.worst == CertificateColumn::Worst::largest;
+    const bool largest = worst.certificate.worst == ControllerColumn::Worst::largest;
     j[worst.certificate.column.header()] = {{"worst", largest ? "largest" : "smallest"},
                                             {"value", certificate_value(worst.value)},
                                             {"t_s", std::isnan(worst.t) ? Json(nullptr) : Json(worst.t)}};

@@ -54,8 +54,8 @@ class BorrowedController final : public Controller {
     target_->control(t, measured_state, reference, u);
   }
   std::vector<std::pair<std::string, double>> counters() const override { return target_->counters(); }
-  std::vector<CertificateColumn> certificate_columns() const override { return target_->certificate_columns(); }
-  void certificate_values(std::vector<double>& row) const override { target_->certificate_values(row); }
+  std::vector<ControllerColumn> log_columns() const override { return target_->log_columns(); }
+  void log_values(std::vector<double>& row) const override { target_->log_values(row); }
   int last_iterations() const override { return target_->last_iterations(); }
   std::unique_ptr<Controller> clone() const override { return target_->clone(); }
 
@@ -79,10 +79,10 @@ class RegisteredController final : public Controller {
     prepared_.controller->control(t, measured_state, reference, u);
   }
   std::vector<std::pair<std::string, double>> counters() const override { return prepared_.controller->counters(); }
-  std::vector<CertificateColumn> certificate_columns() const override {
-    return prepared_.controller->certificate_columns();
+  std::vector<ControllerColumn> log_columns() const override {
+    return prepared_.controller->log_columns();
   }
-  void certificate_values(std::vector<double>& row) const override { prepared_.controller->certificate_values(row); }
+  void log_values(std::vector<double>& row) const override { prepared_.controller->log_values(row); }
   int last_iterations() const override { return prepared_.controller->last_iterations(); }
   std::unique_ptr<Controller> clone() const override;
 

@@ -67,7 +67,7 @@ void print_summary(const RunResult& result, const Flight& flight, const RunFiles
   for (const auto& [counter, count] : s.controller_counters) std::printf("Controller counter %s: %g.\n", counter.c_str(), count);
   for (const CertificateWorst& worst : s.certificates)
     std::printf("Certificate %s: %s %.4g at t = %.4g s.\n", worst.certificate.column.header().c_str(),
-                worst.certificate.worst == CertificateColumn::Worst::largest ? "largest" : "smallest", worst.value,
+                worst.certificate.worst == ControllerColumn::Worst::largest ? "largest" : "smallest", worst.value,
                 worst.t);
   if (files.csv.empty()) {
     std::printf("Wrote %s (summary only).\n", files.json.c_str());

@@ -9,7 +9,7 @@
 
 #include <Eigen/Core>
 
-#include "core/certificate_column.hpp"
+#include "core/controller_column.hpp"
 #include "core/log_column.hpp"
 #include "core/sdc_plant.hpp"
 #include "core/sim/flight_computer.hpp"
@@ -43,7 +43,7 @@ struct RunSummary {
   // The controller's own event counts at the end of the run (ControlLaw::counters()).
   std::vector<std::pair<std::string, double>> controller_counters;
   // The worst value of each of the controller's certificates over the controller samples and its
-  // time (ControlLaw::certificate_columns, docs/model.md §8.4); empty when it reports none.
+  // time (ControlLaw::log_columns, docs/model.md §8.4); empty when it reports none.
   std::vector<CertificateWorst> certificates;
   // The plant's tracked states (SdcPlant::tracked_states) and inputs, naming the vectors below.
   std::vector<TrackedState> tracked;

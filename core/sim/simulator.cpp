@@ -72,15 +72,15 @@ void tracking_error(const std::vector<TrackedState>& tracked, const Eigen::Vecto
   }
 }
 
-// The certificates of the law's last step into `values`, one per column (checked: a plug-in's
-// miscount would shift the log's columns), and into the run's worst.
-void take_certificates(const ControlLaw& law, double t, std::size_t columns, std::vector<double>& values,
+// The law's columns of its last step into `values`, one per column (checked: a plug-in's miscount
+// would shift the log's columns), and its certificates into the run's worst.
+void take_law_columns(const ControlLaw& law, double t, std::size_t columns, std::vector<double>& values,
                        WorstCertificates& worst) {
   values.clear();
-  law.certificate_values(values);
+  law.log_values(values);
   if (values.size() != columns)
-    throw Error("certificate_values gave " + std::to_string(values.size()) + " values for " +
-                std::to_string(columns) + " certificate columns");
+    throw Error("log_values gave " + std::to_string(values.size()) + " values for " + std::to_string(columns) +
+                " log columns");
   worst.add(t, values);
 }
 
@@ -94,7 +94,7 @@ struct ComputerSample {
 void append_row(double t, const std::vector<TrackedState>& tracked, const Eigen::Vector3d& command_position,
                 const Eigen::VectorXd& x, const Eigen::VectorXd& measured, const Eigen::VectorXd& command,
                 const Eigen::VectorXd& applied, const Disturbances& disturbances, const ComputerSample* computer,
-                const std::vector<double>& certificates, std::int64_t compute_ns, RunLog& log) {
+                const std::vector<double>& law_values, std::int64_t compute_ns, RunLog& log) {
   auto& row = log.values;
   row.push_back(t);
   row.insert(row.end(), command_position.begin(), command_position.begin() + static_cast<Eigen::Index>(tracked.size()));
@@ -107,14 +107,14 @@ void append_row(double t, const std::vector<TrackedState>& tracked, const Eigen:
     row.push_back(computer->latency);
     row.push_back(computer->skipped ? 1.0 : 0.0);
   }
-  row.insert(row.end(), certificates.begin(), certificates.end());
+  row.insert(row.end(), law_values.begin(), law_values.end());
   row.push_back(static_cast<double>(compute_ns));
 }
 
 }  // namespace
 
 std::vector<LogColumn> log_schema(const SdcPlant& plant, const Disturbances& disturbances,
-                                  const std::vector<CertificateColumn>& certificates, bool computer) {
+                                  const std::vector<ControllerColumn>& law_columns, bool computer) {
   std::vector<LogColumn> columns{{"t", "s"}};
   for (const auto& tracked : plant.tracked_states()) columns.push_back(tracked.command);
   const std::vector<LogColumn> states = plant.state_columns(), inputs = plant.input_columns();
@@ -127,7 +127,7 @@ std::vector<LogColumn> log_schema(const SdcPlant& plant, const Disturbances& dis
     columns.push_back({"computation_latency", "s"});
     columns.push_back({"sample_skipped", ""});
   }
-  for (const auto& certificate : certificates) columns.push_back(certificate.column);
+  for (const auto& law_column : law_columns) columns.push_back(law_column.column);
   columns.push_back(step_time_column());
   return columns;
 }
@@ -151,12 +151,12 @@ RunResult simulate(ControlLaw& law, Disturbances& disturbances, const ReferenceT
   if (tracked.size() > 3) throw Error("simulate: a plant tracks at most three states (the reference's position)");
 
   RunResult result;
-  const std::vector<CertificateColumn> certificate_columns = law.certificate_columns();
+  const std::vector<ControllerColumn> law_columns = law.log_columns();
   const bool computer_in_loop = settings.computer.active();
   if (settings.computer.latency == FlightComputerSettings::Latency::step_time && !(settings.computer.step_time > 0.0))
     throw Error("simulate: the flight computer's step-time latency has no step time for " + law.name() +
                 " (a Flight takes it from the step times by the controller's label)");
-  result.log.columns = log_schema(plant, disturbances, certificate_columns, computer_in_loop);
+  result.log.columns = log_schema(plant, disturbances, law_columns, computer_in_loop);
   settings.check_memory(result.log.columns.size());
   const double period = settings.controller_period();
   const std::int64_t samples = settings.samples();
@@ -181,9 +181,9 @@ RunResult simulate(ControlLaw& law, Disturbances& disturbances, const ReferenceT
   Eigen::Vector3d padded_error;
   Rk4Workspace workspace(n);
   PositionIntegral reference_integral, true_error_integral;
-  std::vector<double> certificates;
-  certificates.reserve(certificate_columns.size());
-  WorstCertificates worst_certificates(certificate_columns);
+  std::vector<double> law_values;
+  law_values.reserve(law_columns.size());
+  WorstCertificates worst_certificates(law_columns);
   FlightComputer computer(settings.computer, period);
   ComputerSample computer_sample;
 
@@ -214,8 +214,8 @@ RunResult simulate(ControlLaw& law, Disturbances& disturbances, const ReferenceT
       try {
         elapsed_ns = call_control(law, t, measured, now, command, settings.measure_compute_time);
         if (!command.allFinite()) throw Error("non-finite command");
-        if (!certificate_columns.empty())
-          take_certificates(law, t, certificate_columns.size(), certificates, worst_certificates);
+        if (!law_columns.empty())
+          take_law_columns(law, t, law_columns.size(), law_values, worst_certificates);
       } catch (const std::exception& error) {
         // Whatever a user's controller throws (a plug-in's own exception types too) ends this run,
         // not the program: the other runs of a comparison go on.
@@ -236,7 +236,7 @@ RunResult simulate(ControlLaw& law, Disturbances& disturbances, const ReferenceT
     if (deviation) deviation->add(x, now, v, delivered);
     if (settings.keep_log && k % settings.log_every == 0)
       append_row(t, tracked, now.position, x, measured, delivered, applied, disturbances,
-                 computer_in_loop ? &computer_sample : nullptr, certificates, elapsed_ns, result.log);
+                 computer_in_loop ? &computer_sample : nullptr, law_values, elapsed_ns, result.log);
 
     // Anti-windup (ActuatorLimits::anti_windup): held, the command's integral follows the measured
     // position, so that the measured-minus-command integral the controllers see does not move.

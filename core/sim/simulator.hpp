@@ -24,11 +24,11 @@ struct RunResult {
 // The columns of a run's log on `plant` with `disturbances`, in the order the row writer appends
 // them: t; the commands of the tracked states; the true state; the measured state (meas_); the
 // commanded input (cmd_); the applied input (app_); the disturbances' own columns; the
-// controller's certificates (ControlLaw::certificate_columns), if any; the control step's wall
-// time (in_flight_step_time_ns). With the flight computer in the loop (`computer`), its two columns
-// come before the certificates: computation_latency_s and sample_skipped.
+// controller's own columns and certificates (ControlLaw::log_columns), if any; the control step's
+// wall time (in_flight_step_time_ns). With the flight computer in the loop (`computer`), its two
+// columns come before the controller's: computation_latency_s and sample_skipped.
 std::vector<LogColumn> log_schema(const SdcPlant& plant, const Disturbances& disturbances,
-                                  const std::vector<CertificateColumn>& certificates = {}, bool computer = false);
+                                  const std::vector<ControllerColumn>& law_columns = {}, bool computer = false);
 // Where log_schema() puts the plant's blocks: the first column of the true state, of the measured
 // state, of the commanded input and of the applied input.
 struct LogLayout {

@@ -18,6 +18,7 @@ def test_a_plugin_controller_reaches_every_python_function():
     assert "plug-in" in listed["test-only"]
     result = thetad.run("hover-to-hover", "test-only", duration_s=0.3, timing=False)
     assert result.completed and result.controller == "test-only"
+    assert result.columns[-1] == "steps" and result.log[-1, -1] == 300  # its own log column (no timing)
     flown = [r.controller for r in thetad.compare("hover-to-hover", ["all"], duration_s=0.3, timing=False)]
     assert "test-only" in flown and "theta-d" in flown and "example-pid" not in flown
     report = thetad.bench(["test-only", "lqr"], scenario="hover-to-hover", duration_s=0.5, samples=20, segments=1,

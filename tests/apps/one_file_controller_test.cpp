@@ -41,6 +41,13 @@ TEST_F(OneFileController, IsListedAndFlies) {
   output = thetad("run --scenario hover-to-hover --controller test-only --duration 0.3 --out " + path("run"));
   ASSERT_EQ(output.status, 0) << output.err;
   EXPECT_EQ(json("run/test-only.json")["controller"], "test-only");
+  // Its own log column, a plain one (not a certificate), before the step time: 300 samples at 1 kHz.
+  const std::string csv = thetad::testing::read_text(dir_ / "run" / "test-only.csv");
+  const std::string header = csv.substr(0, csv.find('\n'));
+  EXPECT_THAT(header, ::testing::EndsWith(",steps,in_flight_step_time_ns"));
+  const std::string last = csv.substr(csv.rfind('\n', csv.size() - 2) + 1);
+  EXPECT_THAT(last, HasSubstr(",300,"));
+  EXPECT_FALSE(json("run/test-only.json").contains("certificates"));
 }
 
 TEST_F(OneFileController, IsComparedByNameAndAmongAll) {

@@ -20,7 +20,7 @@ namespace {
 
 using testing::scenario_one_flight;
 
-std::vector<std::string> headers(const std::vector<CertificateColumn>& columns) {
+std::vector<std::string> headers(const std::vector<ControllerColumn>& columns) {
   std::vector<std::string> names;
   for (const auto& column : columns) names.push_back(column.column.header());
   return names;
@@ -28,7 +28,7 @@ std::vector<std::string> headers(const std::vector<CertificateColumn>& columns) 
 
 std::vector<double> values(const Controller& controller) {
   std::vector<double> row;
-  controller.certificate_values(row);
+  controller.log_values(row);
   return row;
 }
 
@@ -36,15 +36,15 @@ TEST(Certificates, AreOffByDefault) {
   const auto& flight = scenario_one_flight();
   for (const char* name : {"sdre", "theta-d", "lqr", "lqr-scheduled"}) {
     const auto controller = flight.make(name, YAML::Node());
-    EXPECT_TRUE(controller->certificate_columns().empty()) << name;
+    EXPECT_TRUE(controller->log_columns().empty()) << name;
     EXPECT_TRUE(values(*controller).empty()) << name;
   }
-  EXPECT_EQ(headers(flight.make("sdre", YAML::Load("{certificates: on}"))->certificate_columns()),
+  EXPECT_EQ(headers(flight.make("sdre", YAML::Load("{certificates: on}"))->log_columns()),
             (std::vector<std::string>{"condition_estimate", "forward_error_estimate", "stabilizability_margin"}));
-  EXPECT_EQ(headers(flight.make("theta-d", YAML::Load("{certificates: on}"))->certificate_columns()),
+  EXPECT_EQ(headers(flight.make("theta-d", YAML::Load("{certificates: on}"))->log_columns()),
             (std::vector<std::string>{"last_term_ratio"}));
   // A controller flying with feed-forward reports its inner controller's.
-  EXPECT_EQ(flight.make("sdre", YAML::Load("{certificates: on, feedforward: velocity}"))->certificate_columns().size(),
+  EXPECT_EQ(flight.make("sdre", YAML::Load("{certificates: on, feedforward: velocity}"))->log_columns().size(),
             3u);
 }
 

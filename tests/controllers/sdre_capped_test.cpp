@@ -50,14 +50,14 @@ TEST(SdreCapped, LogsTheResidualOfEachSampleAndCountsTheUnconverged) {
   const ScalarPlant plant([](double x) { return x * x; }, [](double, double) { return 1.0; }, false);
   SdreController sdre(plant, capped(1));
   sdre.reset(Eigen::VectorXd::Zero(1), 0.0);
-  ASSERT_EQ(sdre.certificate_columns().size(), 1U);
-  EXPECT_EQ(sdre.certificate_columns()[0].column.name, "newton_residual");
+  ASSERT_EQ(sdre.log_columns().size(), 1U);
+  EXPECT_EQ(sdre.log_columns()[0].column.name, "newton_residual");
   std::vector<double> row;
   testing::sdre_control_at(sdre, 0.0, 0.0);  // at the design point: P is the solution already
-  sdre.certificate_values(row);
+  sdre.log_values(row);
   EXPECT_LE(row.at(0), 1e-15);
   testing::sdre_control_at(sdre, 0.001, 0.8);  // one step from far away leaves a residual
-  sdre.certificate_values(row);
+  sdre.log_values(row);
   EXPECT_GT(row.at(1), 1e-6);
   const auto counters = sdre.counters();
   ASSERT_EQ(counters.size(), 3U);
@@ -74,7 +74,7 @@ TEST(SdreCapped, FallsBackToAColdSolveWhenAStepCannotStart) {
   EXPECT_NEAR(testing::sdre_control_at(sdre, 0.0, 2.0), -plant.riccati(2.0, 0.0, 1.0, 1.0) * 2.0, 1e-12);
   EXPECT_EQ(sdre.fallback_count(), 1);
   std::vector<double> row;
-  sdre.certificate_values(row);
+  sdre.log_values(row);
   EXPECT_TRUE(std::isnan(row.at(0)));
 }
 

@@ -67,7 +67,7 @@ TEST(CertificatesFlight, SummaryHoldsTheWorstLoggedValuesAndTheirTimes) {
     for (const CertificateWorst& worst : run.summary.certificates) {
       const Eigen::Index c = column(run.log, worst.certificate.column.header());
       ASSERT_LT(c, static_cast<Eigen::Index>(run.log.columns.size()));
-      const bool largest = worst.certificate.worst == CertificateColumn::Worst::largest;
+      const bool largest = worst.certificate.worst == ControllerColumn::Worst::largest;
       Eigen::Index at = 0;
       for (Eigen::Index row = 1; row < run.log.rows(); ++row) {
         const double value = run.log.row(row)[c], best = run.log.row(at)[c];
@@ -113,10 +113,10 @@ class Miscounting final : public ControlLaw {
     u.setZero();
     u[0] = 53.0;
   }
-  std::vector<CertificateColumn> certificate_columns() const override {
-    return {{{"a", ""}, CertificateColumn::Worst::largest}, {{"b", ""}, CertificateColumn::Worst::smallest}};
+  std::vector<ControllerColumn> log_columns() const override {
+    return {{{"a", ""}, ControllerColumn::Worst::largest}, {{"b", ""}, ControllerColumn::Worst::smallest}};
   }
-  void certificate_values(std::vector<double>& row) const override { row.push_back(1.0); }
+  void log_values(std::vector<double>& row) const override { row.push_back(1.0); }
 };
 
 TEST(CertificatesFlight, ALawGivingTooFewValuesFails) {
@@ -127,7 +127,50 @@ TEST(CertificatesFlight, ALawGivingTooFewValuesFails) {
   const sim::RunResult run = sim::simulate(law, scenario.trajectory, scenario.initial_state, settings,
                                            heli::Parameters::nominal(), scenario.model_options);
   EXPECT_EQ(run.summary.status, sim::RunStatus::failed);
-  EXPECT_THAT(run.summary.reason, HasSubstr("certificate_values gave 1 values for 2 certificate columns"));
+  EXPECT_THAT(run.summary.reason, HasSubstr("log_values gave 1 values for 2 log columns"));
+}
+
+// A law's plain columns are logged and not summarized; the certificates among them are, each by its
+// own values. The plain column comes first and is larger, so that a summary reading the wrong
+// column would say so.
+class PlainAndCertificate final : public ControlLaw {
+ public:
+  std::string name() const override { return "plain-and-certificate"; }
+  void reset(const Eigen::VectorXd&, double) override { steps_ = 0; }
+  void control(double, const Eigen::Ref<const Eigen::VectorXd>&, const Reference&,
+               Eigen::Ref<Eigen::VectorXd> u) override {
+    u.setZero();
+    u[0] = 53.0;
+    ++steps_;
+  }
+  std::vector<ControllerColumn> log_columns() const override {
+    return {{{"plain", "m"}}, {{"certificate", ""}, ControllerColumn::Worst::smallest}};
+  }
+  void log_values(std::vector<double>& row) const override {
+    row.push_back(1000.0 + steps_);
+    row.push_back(10.0 - steps_);
+  }
+
+ private:
+  int steps_ = 0;
+};
+
+TEST(CertificatesFlight, ALawsPlainColumnsAreLoggedAndOnlyItsCertificatesSummarized) {
+  const Scenario scenario = load_scenario(kScenario);
+  sim::SimulationSettings settings = sim::SimulationSettings::ideal();
+  settings.duration = 0.01;
+  PlainAndCertificate law;
+  const sim::RunResult run = sim::simulate(law, scenario.trajectory, scenario.initial_state, settings,
+                                           heli::Parameters::nominal(), scenario.model_options);
+  ASSERT_EQ(run.summary.status, sim::RunStatus::completed) << run.summary.reason;
+  ASSERT_EQ(run.summary.certificates.size(), 1u);
+  EXPECT_EQ(run.summary.certificates[0].certificate.column.name, "certificate");
+  EXPECT_EQ(run.summary.certificates[0].value, 0.0);  // 10 samples: 9, 8, ..., 0
+  EXPECT_DOUBLE_EQ(run.summary.certificates[0].t, 0.009);
+  const Eigen::Index plain = column(run.log, "plain_m");
+  ASSERT_LT(plain, static_cast<Eigen::Index>(run.log.columns.size()));
+  EXPECT_EQ(run.log.row(run.log.rows() - 1)[plain], 1010.0);
+  EXPECT_EQ(run.log.columns.back().header(), sim::step_time_column().header());
 }
 
 }  // namespace
