@@ -1,7 +1,8 @@
 // The RTAC/TORA benchmark (docs/plants.md) through every front end of the command line, as a user
 // runs them: the shipped scenario files that name the plant (scenarios/tora/), flown by θ–D, the
-// SDRE and the LQR at the plant's design point, on short horizons; the plant's own factors; and the
-// errors of a plant's scenario file, each naming the file, the field and the reason.
+// SDRE and the LQR at the plant's design point, on short horizons; the plant's own factors; the
+// errors of a plant's scenario file, each naming the file, the field and the reason; and the example
+// plant plug-in (experiment/examples/pendulum-plugin) through a campaign.
 
 #include <cmath>
 #include <filesystem>
@@ -40,8 +41,9 @@ class PlantFrontEnds : public ::testing::Test {
     return path(name);
   }
   // The records of the campaign `text`, written to the file `name` and run into `name`.out.
-  std::vector<thetad::RunRecord> campaign(const std::string& name, const std::string& text) const {
-    const Output output = thetad("campaign run " + scenario(name, text) +
+  std::vector<thetad::RunRecord> campaign(const std::string& name, const std::string& text,
+                                          const std::string& plugin = "") const {
+    const Output output = thetad(plugin + "campaign run " + scenario(name, text) +
                                  " --jobs 2 --no-timing --quiet --out " + path(name + ".out"));
     EXPECT_EQ(output.status, 0) << output.err;
     return thetad::CampaignStore(dir_ / (name + ".out") / "campaign.sqlite").records();
@@ -265,6 +267,26 @@ TEST_F(PlantFrontEnds, AFactorThatDoesNotApplyIsRefusedByName) {
     EXPECT_THAT(output.err, HasSubstr(c.message)) << c.factor;
     fs::remove_all(dir_ / "refused");
   }
+}
+
+TEST_F(PlantFrontEnds, TheExamplePlantPluginFliesAndSweepsItsOwnSettings) {
+  const std::string plugin = std::string("--plugin ") + THETAD_PENDULUM_PLUGIN + " ";
+  scenario("pendulum.yaml", "plant: inverted-pendulum\nplant_settings: {damping: 0.2}\nduration: 2\n");
+  const std::vector<thetad::RunRecord> flown =
+      campaign("pendulum-sweep.yaml", "campaign: pendulum\nscenarios: [pendulum.yaml]\ncontrollers:\n"
+                                      "  - {controller: theta-d}\n  - {controller: lqr}\n"
+                                      "draws: {count: 1, base_seed: 1}\nsweep:\n  grid:\n    plant.length: [0.5, 2]\n",
+               plugin);
+  ASSERT_EQ(flown.size(), 4u);
+  for (const auto& record : flown) {
+    EXPECT_TRUE(record.completed()) << record.label << " " << record.reason;
+    EXPECT_TRUE(plant_factor_values(record).contains("plant.length"));
+  }
+  const Output bad = thetad(plugin + "run --scenario " +
+                            scenario("bad.yaml", "plant: inverted-pendulum\nplant_settings: {length: 0}\nduration: 1\n") +
+                            " --controller sdre --quiet --out " + path("bad"));
+  EXPECT_EQ(bad.status, 1);
+  EXPECT_THAT(bad.err, ::testing::AllOf(HasSubstr("bad.yaml:2:"), HasSubstr("field 'length'")));
 }
 
 }  // namespace
