@@ -2,21 +2,18 @@
 #include "experiment/run_settings.hpp"
 
 #include <array>
-#include <charconv>
 #include <cmath>
 #include <numbers>
-#include <map>
 #include <optional>
 #include <sstream>
 #include <string>
-#include <string_view>
-#include <vector>
 
 #include "core/error.hpp"
 #include "core/fixed_string.hpp"
 #include "core/helicopter/uncertainty.hpp"
 #include "core/sim/seed.hpp"
 #include "experiment/disturbance_json.hpp"
+#include "experiment/plant_setting_rows.hpp"
 
 namespace thetad {
 
@@ -45,20 +42,6 @@ bool switch_value(double value) {
 int whole(double value) {
   if (value != std::floor(value)) throw Error("takes whole numbers, got " + std::to_string(value));
   return static_cast<int>(value);
-}
-
-double finite(double value) {
-  if (!std::isfinite(value)) throw Error("must be a finite number");
-  return value;
-}
-
-// I of initial_state.I: a state's index, a whole decimal from 0.
-int state_index(std::string_view text) {
-  int index = 0;
-  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), index);
-  if (error != std::errc() || end != text.data() + text.size() || index < 0)
-    throw Error("expected initial_state.I with I a state's index (0, 1, ...), got initial_state." + std::string(text));
-  return index;
 }
 
 // The initial offsets are vectors in RunControls; a campaign sweeps their axes one by one, the
@@ -107,7 +90,7 @@ RunSetting scale_row(RunSetting row) {
 // fields of them) and the order a result's "settings" records them.
 std::vector<RunSetting> table() {
   using Settings = sim::SimulationSettings;
-  return {
+  std::vector<RunSetting> rows = {
       {.name = "ideal", .value = Value::on_off,
        .description = "no parameter uncertainty, noise, wind or actuator limits (before every other setting)",
        .apply = [](double v, RunControls& c) { c.ideal = switch_value(v); },
@@ -443,28 +426,10 @@ std::vector<RunSetting> table() {
        .factor_column = 12, .example = "30", .result_key = "provenance.course_rad",
        .replay = [](const Json& v, RunControls& c) { c.course = v.get<double>(); },
        .absent_until = RunSetting::kEveryVersion},
-      // A plant's own (Flight::plant_flight; the helicopter's scenarios refuse them).
-      {.name = "plant.NAME",
-       .description = "the plant's own setting NAME (plant.epsilon for the tora), over its scenario's plant_settings",
-       .apply_named = [](std::string_view name, double v, RunControls& c) {
-         c.plant_settings[std::string(name.substr(name.find('.') + 1))] = finite(v);
-       },
-       .result_key = "provenance.plant_settings",
-       .replay = [](const Json& v, RunControls& c) { c.plant_settings = v.get<std::map<std::string, double>>(); },
-       .absent_until = RunSetting::kEveryVersion},
-      {.name = "initial_state.I",
-       .description = "entry I (from 0) of the plant's initial state, in place of its scenario's",
-       .apply_named = [](std::string_view name, double v, RunControls& c) {
-         c.initial_state_entries[state_index(name.substr(name.find('.') + 1))] = finite(v);
-       },
-       // The initial state flown, every entry: a replay starts where the run started.
-       .result_key = "provenance.initial_state",
-       .replay = [](const Json& v, RunControls& c) {
-         const std::vector<double> x0 = v.get<std::vector<double>>();
-         for (std::size_t i = 0; i < x0.size(); ++i) c.initial_state_entries[static_cast<int>(i)] = x0[i];
-       },
-       .absent_until = RunSetting::kEveryVersion},
   };
+  // A plant's own, which act on its settings and initial state (Flight), last.
+  for (RunSetting& row : plant_setting_rows()) rows.push_back(std::move(row));
+  return rows;
 }
 
 }  // namespace
