@@ -156,6 +156,9 @@ Flight Flight::plant_flight(std::shared_ptr<const SdcPlant> plant, Scenario scen
 Flight Flight::of_plant(std::shared_ptr<const SdcPlant> plant, const std::string& name,
                         const Eigen::VectorXd& initial_state, const RunControls& controls) {
   if (!controls.duration) throw Error("plant " + name + ": its flight needs a duration (it has no scenario to say it)");
+  if (!controls.plant_settings.empty())
+    throw Error("plant " + name + ": the factors plant.NAME set a registered plant's settings (flown by its name); "
+                "this plant object is built with its own");
   Scenario scenario;
   scenario.name = name;
   scenario.plant = name;
@@ -168,7 +171,11 @@ Flight Flight::of_plant(const std::string& name, const std::optional<Eigen::Vect
                         const RunControls& controls) {
   PlantRegistry::instance().entry(name);  // an unknown name: the registry's message, listing the known ones
   NamedPlant named = registered_plant(name, YAML::Node(), controls, "plant " + name);
-  return of_plant(std::move(named.plant), name, initial_state ? *initial_state : named.initial_state, controls);
+  RunControls built = controls;  // the plant settings are in the plant built
+  built.plant_settings.clear();
+  Flight flight = of_plant(std::move(named.plant), name, initial_state ? *initial_state : named.initial_state, built);
+  flight.provenance_.plant_settings = controls.plant_settings;
+  return flight;
 }
 
 Flight Flight::of_scenario_or_plant(const std::string& scenario, const std::string& plant,

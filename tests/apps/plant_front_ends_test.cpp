@@ -238,13 +238,19 @@ TEST_F(PlantFrontEnds, RunSetsThemAsTheScenarioFileDoesAndTheRunReplays) {
   const Output file = thetad("run --scenario tora/strong-coupling --controller theta-d --duration 2 --no-timing "
                              "--quiet --out " + path("file"));
   ASSERT_EQ(file.status, 0) << file.err;
+  const Output shorthand = thetad("run --plant tora --set plant.epsilon=0.5 --initial-state 1.5,0,0,0 --controller "
+                                  "theta-d --duration 2 --no-timing --quiet --out " + path("shorthand"));
+  ASSERT_EQ(shorthand.status, 0) << shorthand.err;
   const nlohmann::json result = read("set/theta-d.json");
   EXPECT_EQ(result["cost"], read("file/theta-d.json")["cost"]);
+  EXPECT_EQ(read("shorthand/theta-d.json")["cost"], result["cost"]);
   EXPECT_EQ(result["provenance"]["plant_settings"], nlohmann::json({{"epsilon", 0.5}}));
   EXPECT_EQ(result["provenance"]["initial_state"], nlohmann::json::array({1.5, 0.0, 0.0, 0.0}));
-  const Output again = thetad("run --replay " + path("set/theta-d.json"));
-  EXPECT_EQ(again.status, 0) << again.err;
-  EXPECT_THAT(again.out, HasSubstr("bit for bit"));
+  for (const char* run : {"set/theta-d.json", "shorthand/theta-d.json"}) {
+    const Output again = thetad("run --replay " + path(run));
+    EXPECT_EQ(again.status, 0) << run << again.err;
+    EXPECT_THAT(again.out, HasSubstr("bit for bit")) << run;
+  }
 }
 
 TEST_F(PlantFrontEnds, AFactorThatDoesNotApplyIsRefusedByName) {
