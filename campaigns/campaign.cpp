@@ -65,9 +65,10 @@ const Factor& known_factor(const std::string& name, const std::string& field, co
 }
 
 // A factor given twice in one map, once by its old name (`duration` and `duration_s`).
-void check_once(const FactorValues& values, const Factor& factor, const std::string& field, const YAML::Mark& mark) {
+void check_once(const FactorValues& values, const std::string& factor, const std::string& field,
+                const YAML::Mark& mark) {
   for (const auto& [name, value] : values) {
-    if (name == factor.name) throw SettingsError(field, "factor '" + name + "' is given twice", mark);
+    if (name == factor) throw SettingsError(field, "factor '" + name + "' is given twice", mark);
   }
 }
 
@@ -79,8 +80,9 @@ FactorValues read_fixed(const YAML::Node& node) {
   for (const auto& entry : node) {
     const std::string field = "fixed." + entry.first.Scalar();
     const Factor& factor = known_factor(entry.first.Scalar(), field, entry.first.Mark());
-    check_once(fixed, factor, field, entry.first.Mark());
-    fixed.emplace_back(factor.name, factor_value(entry.second, field, factor));
+    const std::string name = factor.current_name(entry.first.Scalar());
+    check_once(fixed, name, field, entry.first.Mark());
+    fixed.emplace_back(name, factor_value(entry.second, field, factor));
   }
   return fixed;
 }
@@ -104,7 +106,7 @@ std::vector<FactorValues> read_sweep(const YAML::Node& node, const FactorValues&
     for (const auto& axis : grid) {
       const std::string field = "sweep.grid." + axis.first.Scalar();
       const Factor& factor = known_factor(axis.first.Scalar(), field, axis.first.Mark());
-      const std::string name(factor.name);
+      const std::string name = factor.current_name(axis.first.Scalar());
       check_not_fixed(name, field, axis.first.Mark());
       if (std::find(swept.begin(), swept.end(), name) != swept.end())
         throw SettingsError(field, "factor '" + name + "' is given twice", axis.first.Mark());
@@ -138,9 +140,9 @@ std::vector<FactorValues> read_sweep(const YAML::Node& node, const FactorValues&
     for (const auto& entry : list[i]) {
       const std::string field = item + "." + entry.first.Scalar();
       const Factor& factor = known_factor(entry.first.Scalar(), field, entry.first.Mark());
-      const std::string name(factor.name);
+      const std::string name = factor.current_name(entry.first.Scalar());
       check_not_fixed(name, field, entry.first.Mark());
-      check_once(cell, factor, field, entry.first.Mark());
+      check_once(cell, name, field, entry.first.Mark());
       cell.emplace_back(name, factor_value(entry.second, field, factor));
       names.push_back(name);
     }

@@ -26,9 +26,11 @@ constexpr const char* kFormat = "thetad-campaign-1";
 // the registered name in column controller, meta labels (was controllers), the units last in the
 // factor and metric columns (duration_s, max_axis_error_m, rms_command_T_mr_N, wall_time_s, ...).
 // 6: the factor slowdown and the flight computer's metrics missed_deadlines, longest_missed_run and
-// skipped_samples (NULL without it, docs/model.md §15.7).
-// The report (scripts/campaign_report.py) reads versions 2 to 6; resume and merge only 6.
-constexpr int kFormatVersion = 6;
+// skipped_samples (NULL without it, docs/model.md §15.7). 7: a column for each member of a factor
+// family that the campaign names (plant.epsilon, initial_state.0: docs/campaigns.md), after the
+// metrics.
+// The report (scripts/campaign_report.py) reads versions 2 to 7; resume and merge only 7.
+constexpr int kFormatVersion = 7;
 
 // A prepared statement, finalized with its scope.
 class Statement {
@@ -85,14 +87,32 @@ sqlite3* open_database(const fs::path& file, int flags) {
   return db;
 }
 
-// The runs table's columns after run_index: inputs, then outcome, then metric_columns().
-std::vector<std::string> run_columns() {
+// A column's name in SQL: the family members' have a dot ("plant.epsilon").
+std::string quoted(const std::string& column) { return '"' + column + '"'; }
+
+// The runs table's columns after run_index: inputs, then outcome, then metric_columns(), then the
+// members of factor families that the campaign names (`family_columns`).
+std::vector<std::string> run_columns(const std::vector<std::string>& family_columns) {
   std::vector<std::string> columns{"cell", "draw", "scenario", "label", "controller", "seed"};
   for (const Factor& factor : factors()) columns.emplace_back(factor.name);
   for (const char* name : {"status", "reason", "information", "end_time_s", "controller_samples"})
     columns.emplace_back(name);
   for (const MetricColumn& metric : metric_columns()) columns.emplace_back(metric.name);
+  for (const std::string& name : family_columns) columns.push_back(quoted(name));
   return columns;
+}
+
+// The family members the cells name, in the order they first appear.
+std::vector<std::string> family_columns(const Campaign& campaign) {
+  std::vector<std::string> names;
+  for (const FactorValues& cell : campaign.cells) {
+    for (const auto& [name, value] : cell) {
+      const Factor* factor = find_factor(name);
+      if (factor && factor->is_family() && std::find(names.begin(), names.end(), name) == names.end())
+        names.push_back(name);
+    }
+  }
+  return names;
 }
 
 }  // namespace
@@ -137,6 +157,7 @@ CampaignStore::CampaignStore(const fs::path& file, const Campaign& campaign, con
   make_durable();
   if (open == Open::create) {
     version_ = kFormatVersion;
+    family_columns_ = family_columns(campaign);
     create_schema(campaign, shard, provenance);
     sync_entry(file);
     return;
@@ -148,15 +169,18 @@ CampaignStore::CampaignStore(const fs::path& file, const Campaign& campaign, con
                 campaign.file.string() + "'s): refusing to resume");
   if (meta("shard") != shard.text())
     throw Error(file.string() + ": holds shard " + meta("shard") + ", not " + shard.text() + ": refusing to resume");
+  read_family_columns();
 }
 
 CampaignStore::CampaignStore(const fs::path& file) : file_(file) {
   if (!fs::exists(file)) throw Error(file.string() + ": no such campaign database");
   db_ = open_database(file, SQLITE_OPEN_READONLY);
   check_format(file);
+  read_family_columns();
 }
 
-CampaignStore::CampaignStore(const fs::path& file, const CampaignStore& like) : file_(file), version_(kFormatVersion) {
+CampaignStore::CampaignStore(const fs::path& file, const CampaignStore& like)
+    : file_(file), version_(kFormatVersion), family_columns_(like.family_columns_) {
   if (fs::exists(file)) throw Error(file.string() + " exists: refusing to overwrite it");
   db_ = open_database(file, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE);
   make_durable();
@@ -191,10 +215,18 @@ void CampaignStore::execute(const std::string& sql) const {
   }
 }
 
+void CampaignStore::read_family_columns() {
+  Statement columns(db_, "SELECT name FROM pragma_table_info('runs')");
+  while (columns.step()) {
+    const Factor* factor = find_factor(columns.text(0));
+    if (factor && factor->is_family()) family_columns_.push_back(columns.text(0));
+  }
+}
+
 void CampaignStore::create_tables() {
   std::string sql = "CREATE TABLE meta (key TEXT PRIMARY KEY, value TEXT NOT NULL);"
                     " CREATE TABLE runs (run_index INTEGER PRIMARY KEY";
-  for (const std::string& column : run_columns()) {
+  for (const std::string& column : run_columns(family_columns_)) {
     const bool is_text = column == "scenario" || column == "label" || column == "controller" || column == "seed" ||
                          column == "status" || column == "reason" || column == "information";
     sql += ", " + column + (is_text ? " TEXT" : column == "cell" || column == "draw" || column == "controller_samples" ? " INTEGER" : " REAL");
@@ -248,7 +280,7 @@ std::set<std::int64_t> CampaignStore::stored() const {
 
 void CampaignStore::write(const std::vector<RunRecord>& records) {
   if (records.empty()) return;
-  const std::vector<std::string> columns = run_columns();
+  const std::vector<std::string> columns = run_columns(family_columns_);
   std::string sql = "INSERT INTO runs (run_index", values = "?";
   for (const auto& column : columns) {
     sql += ", " + column;
@@ -267,21 +299,23 @@ void CampaignStore::write(const std::vector<RunRecord>& records) {
       insert.bind(i++, r.label);
       insert.bind(i++, r.controller);
       insert.bind(i++, std::to_string(r.seed));  // text: SQLite integers are signed 64-bit
-      for (const Factor& factor : factors()) {
+      const auto bind_factor = [&](std::string_view name) {
         const auto given = std::find_if(r.factors.begin(), r.factors.end(),
-                                        [&](const auto& value) { return value.first == factor.name; });
+                                        [&](const auto& value) { return value.first == name; });
         if (given == r.factors.end()) {
           insert.bind_null(i++);  // the scenario's own value
         } else {
           insert.bind(i++, given->second);
         }
-      }
+      };
+      for (const Factor& factor : factors()) bind_factor(factor.name);
       insert.bind(i++, r.status);
       insert.bind(i++, r.reason);
       insert.bind(i++, r.information);
       insert.bind(i++, r.end_time_s);
       insert.bind(i++, r.controller_samples);
       for (double value : r.metrics) insert.bind(i++, value);
+      for (const std::string& name : family_columns_) bind_factor(name);
       insert.step();
       insert.reset();
     }
@@ -294,7 +328,7 @@ void CampaignStore::write(const std::vector<RunRecord>& records) {
 
 std::vector<RunRecord> CampaignStore::records() const {
   require_current_format("cannot read its runs to merge or compare them");
-  const std::vector<std::string> columns = run_columns();
+  const std::vector<std::string> columns = run_columns(family_columns_);
   std::string sql = "SELECT run_index";
   for (const auto& column : columns) sql += ", " + column;
   sql += " FROM runs ORDER BY run_index";
@@ -322,6 +356,10 @@ std::vector<RunRecord> CampaignStore::records() const {
     // A metric a run does not have (J_dev of a plant without trims) is stored as NULL.
     for (std::size_t m = 0; m < metric_columns().size(); ++m, ++i)
       r.metrics.push_back(select.is_null(i) ? std::numeric_limits<double>::quiet_NaN() : select.number(i));
+    for (const std::string& name : family_columns_) {
+      if (!select.is_null(i)) r.factors.emplace_back(name, select.number(i));
+      ++i;
+    }
     records.push_back(std::move(r));
   }
   return records;

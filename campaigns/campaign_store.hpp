@@ -62,12 +62,15 @@ class CampaignStore {
   // Throws thetad::Error unless the database is a campaign database this thetad can read (not of a
   // newer format_version); sets version_.
   void check_format(const std::filesystem::path& file);
+  // The runs table's columns of factor families' members (plant.epsilon), as the database has them.
+  void read_family_columns();
   void create_tables();
   void create_schema(const Campaign& campaign, const Shard& shard, const std::string& provenance);
 
   std::filesystem::path file_;
   sqlite3* db_ = nullptr;
   int version_ = 0;
+  std::vector<std::string> family_columns_;  // the members of factor families the campaign names
 };
 
 // The database file of a campaign's output folder.

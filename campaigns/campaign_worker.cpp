@@ -31,7 +31,8 @@ Flight& CampaignWorker::flight(int cell, int scenario) {
 
 PreparedController& CampaignWorker::controller(const Flight& flight, int scenario, int index) {
   const Eigen::VectorXd& x0 = flight.initial_state();
-  DesignKey key{scenario, std::vector<double>(x0.data(), x0.data() + x0.size()), index};
+  DesignKey key{scenario, std::vector<double>(x0.data(), x0.data() + x0.size()), flight.provenance().plant_settings,
+                index};
   std::unique_ptr<PreparedController>& prepared = controllers_[key];
   if (!prepared)
     prepared = std::make_unique<PreparedController>(flight.prepare(campaign_.controllers[static_cast<std::size_t>(index)]));
@@ -77,6 +78,7 @@ std::string CampaignWorker::provenance() {
     shared.initial_attitude_offset.reset();
     shared.speed_scale.reset();
     shared.course.reset();
+    shared.plant_settings.clear();
     nlohmann::ordered_json j = to_json(shared);
     j.erase("seed");
     scenarios.push_back(std::move(j));

@@ -22,7 +22,7 @@ namespace thetad {
 // run resets its controller and reseeds the flight, so what a run computes depends on its index
 // alone, never on which worker flew what before it. A controller is designed from the scenario's
 // model and initial state only (ControllerContext), so the cells of a scenario that start from the
-// same state share one (a sweep over disturbances designs the gain-scheduled LQR's table once).
+// same state (and set the same plant settings) share one (a sweep over disturbances designs the gain-scheduled LQR's table once).
 class CampaignWorker {
  public:
   // `timing`: false flies without wall-clock figures (--no-timing). `logs`: the runs whose full log
@@ -53,14 +53,16 @@ class CampaignWorker {
   RunResult fly_logged(Flight& flight, PreparedController& prepared, std::int64_t index,
                        const std::function<void(double t)>& observe) const;
 
-  // A controller's design: scenario, initial state and controller index.
-  using DesignKey = std::tuple<int, std::vector<double>, int>;
+  // A controller's design: scenario, initial state, the plant's settings the cell sets (plant.NAME)
+  // and controller index.
+  using DesignKey = std::tuple<int, std::vector<double>, std::map<std::string, double>, int>;
 
   const Campaign& campaign_;
   bool timing_;
   std::optional<KeptLogs> logs_;
   std::map<std::pair<int, int>, std::unique_ptr<Flight>> flights_;
-  // Each refers to the model of the flight it was designed for (equal in every cell of a scenario).
+  // Each refers to the model of the flight it was designed for (equal in every cell of a scenario
+  // that sets the same plant settings).
   std::map<DesignKey, std::unique_ptr<PreparedController>> controllers_;
 };
 

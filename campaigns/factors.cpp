@@ -13,7 +13,7 @@ const std::vector<Factor>& factors() {
   static const std::vector<Factor> all = [] {
     std::vector<Factor> found;
     for (const RunSetting& setting : run_settings()) {
-      if (setting.is_factor()) found.push_back(setting);
+      if (setting.factor_column > 0) found.push_back(setting);
     }
     std::sort(found.begin(), found.end(),
               [](const Factor& a, const Factor& b) { return a.factor_column < b.factor_column; });
@@ -23,15 +23,17 @@ const std::vector<Factor>& factors() {
 }
 
 const Factor* find_factor(std::string_view name) {
-  const RunSetting* setting = find_run_setting(name);
-  return setting && setting->is_factor() ? setting : nullptr;
+  for (const RunSetting& setting : run_settings()) {
+    if (setting.is_factor() && setting.names(name)) return &setting;
+  }
+  return nullptr;
 }
 
 std::string factor_names() {
   std::string names;
-  for (const Factor& factor : factors()) {
-    if (!names.empty()) names += ", ";
-    names += factor.name;
+  for (const Factor& factor : factors()) names += (names.empty() ? "" : ", ") + std::string(factor.name);
+  for (const RunSetting& setting : run_settings()) {
+    if (setting.is_family()) names += ", " + std::string(setting.name);
   }
   return names;
 }
@@ -70,7 +72,7 @@ void apply(const FactorValues& values, RunControls& controls) {
     const Factor* factor = find_factor(name);
     if (factor == nullptr) throw Error("unknown campaign factor '" + name + "' (known: " + factor_names() + ")");
     try {
-      factor->apply(value, controls);
+      factor->set(name, value, controls);
     } catch (const Error& error) {
       throw Error(name + ": " + error.what());
     }

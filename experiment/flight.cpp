@@ -20,20 +20,40 @@ namespace thetad {
 
 namespace {
 
-// The plant a scenario file names, built from its settings block; errors name the file and the field.
-NamedPlant registered_plant(const Scenario& scenario) {
+// The plant `name` built from its settings block with the run's plant.NAME factors over it; errors
+// name the file (`source`) and the field, or the factor.
+NamedPlant registered_plant(const std::string& name, const YAML::Node& block, const RunControls& controls,
+                            const std::string& source) {
   const PlantRegistry& registry = PlantRegistry::instance();
-  if (!registry.contains(scenario.plant))
-    throw Error(scenario.source + ": field 'plant': unknown plant '" + scenario.plant + "' (known: " +
-                registry.known_names() + "; a plug-in's plant needs --plugin or THETAD_PLUGIN_PATH)");
-  try {
-    return with_settings_source(scenario.source,
-                                [&] { return registry.make(scenario.plant, scenario.plant_settings); });
-  } catch (const SettingsError&) {
-    throw;
-  } catch (const Error& error) {
-    throw Error(scenario.source + ": field 'plant_settings': " + error.what());
+  if (!registry.contains(name))
+    throw Error(source + ": field 'plant': unknown plant '" + name + "' (known: " + registry.known_names() +
+                "; a plug-in's plant needs --plugin or THETAD_PLUGIN_PATH)");
+  YAML::Node settings = block;
+  if (!controls.plant_settings.empty()) {
+    settings = block ? YAML::Clone(block) : YAML::Node(YAML::NodeType::Map);
+    for (const auto& [key, value] : controls.plant_settings) settings[key] = value;
   }
+  const auto factor = [&](const std::string& key) {
+    return controls.plant_settings.contains(key) ? "factor 'plant." + key + "'" : std::string();
+  };
+  try {
+    return with_settings_source(source, [&] { return registry.make(name, settings); });
+  } catch (const SettingsError& error) {
+    if (factor(error.field()).empty()) throw;
+    throw Error(source + ": " + factor(error.field()) + ": " + error.reason() + " (a setting of the plant " + name + ")");
+  } catch (const Error& error) {
+    const std::string given = controls.plant_settings.empty() ? "" : " with the factors plant.NAME";
+    throw Error(source + ": field 'plant_settings'" + given + ": " + error.what());
+  }
+}
+
+// "plant.epsilon, initial_state.0": the plant's factors among `controls`, for messages.
+std::string plant_factors(const RunControls& controls) {
+  std::string names;
+  for (const auto& [key, value] : controls.plant_settings) names += (names.empty() ? "" : ", ") + ("plant." + key);
+  for (const auto& [index, value] : controls.initial_state_entries)
+    names += (names.empty() ? "" : ", ") + ("initial_state." + std::to_string(index));
+  return names;
 }
 
 }  // namespace
@@ -47,7 +67,7 @@ Flight Flight::from_text(const std::string& text, const std::string& file, const
   if (parsed.plant.empty()) {
     flight = Flight(parsed, controls);
   } else {
-    NamedPlant named = registered_plant(parsed);
+    NamedPlant named = registered_plant(parsed.plant, parsed.plant_settings, controls, parsed.source);
     if (parsed.initial_state.size() == 0) parsed.initial_state = named.initial_state;
     flight = plant_flight(std::move(named.plant), std::move(parsed), controls);
   }
@@ -63,6 +83,9 @@ Flight::Flight(const Scenario& parsed, const RunControls& controls)
     : scenario_(as_flown(controls, parsed)),
       settings_(scenario_.simulation_settings()),
       initial_state_(offset_initial_state(controls, scenario_.initial_state)) {
+  if (!plant_factors(controls).empty())
+    throw Error(scenario_.source + ": " + plant_factors(controls) + ": a plant's settings and initial state (docs/plants.md); "
+                "the helicopter's scenario has neither (its initial offsets move its start)");
   const auto helicopter = std::make_shared<const heli::Helicopter>(heli::Parameters::nominal(), scenario_.model_options);
   helicopter_ = helicopter.get();
   plant_ = helicopter;
@@ -94,6 +117,13 @@ Flight Flight::plant_flight(std::shared_ptr<const SdcPlant> plant, Scenario scen
                 std::to_string(plant->state_dim()) + " states");
   if (controls.initial_offset || controls.initial_attitude_offset || controls.speed_scale || controls.course)
     throw Error(where + ": initial offsets, speed scales and courses apply to the helicopter's scenarios");
+  for (const auto& [index, value] : controls.initial_state_entries) {
+    if (index >= plant->state_dim())
+      throw Error(where + ": initial_state." + std::to_string(index) + ": the plant has " +
+                  std::to_string(plant->state_dim()) + " states (initial_state.0 to initial_state." +
+                  std::to_string(plant->state_dim() - 1) + ")");
+    scenario.initial_state[index] = value;
+  }
   // It flies as it is (sim::NoDisturbances): a switch that turns a disturbance on would be recorded
   // as on and have no effect.
   for (const auto& asked : {controls.parameter_uncertainty, controls.wind_gust, controls.measurement_noise,
@@ -114,6 +144,7 @@ Flight Flight::plant_flight(std::shared_ptr<const SdcPlant> plant, Scenario scen
   flight.provenance_.scenario_name = scenario.name;
   flight.provenance_.initial_state.assign(scenario.initial_state.data(),
                                           scenario.initial_state.data() + scenario.initial_state.size());
+  flight.provenance_.plant_settings = controls.plant_settings;
   flight.provenance_.seed = flight.settings_.seed;
   flight.provenance_.dt = flight.settings_.dt;
   flight.scenario_ = std::move(scenario);
@@ -125,6 +156,9 @@ Flight Flight::plant_flight(std::shared_ptr<const SdcPlant> plant, Scenario scen
 Flight Flight::of_plant(std::shared_ptr<const SdcPlant> plant, const std::string& name,
                         const Eigen::VectorXd& initial_state, const RunControls& controls) {
   if (!controls.duration) throw Error("plant " + name + ": its flight needs a duration (it has no scenario to say it)");
+  if (!controls.plant_settings.empty())
+    throw Error("plant " + name + ": the factors plant.NAME set a registered plant's settings (flown by its name); "
+                "this plant object is built with its own");
   Scenario scenario;
   scenario.name = name;
   scenario.plant = name;
@@ -135,8 +169,13 @@ Flight Flight::of_plant(std::shared_ptr<const SdcPlant> plant, const std::string
 
 Flight Flight::of_plant(const std::string& name, const std::optional<Eigen::VectorXd>& initial_state,
                         const RunControls& controls) {
-  NamedPlant named = PlantRegistry::instance().make(name, YAML::Node());
-  return of_plant(std::move(named.plant), name, initial_state ? *initial_state : named.initial_state, controls);
+  PlantRegistry::instance().entry(name);  // an unknown name: the registry's message, listing the known ones
+  NamedPlant named = registered_plant(name, YAML::Node(), controls, "plant " + name);
+  RunControls built = controls;  // the plant settings are in the plant built
+  built.plant_settings.clear();
+  Flight flight = of_plant(std::move(named.plant), name, initial_state ? *initial_state : named.initial_state, built);
+  flight.provenance_.plant_settings = controls.plant_settings;
+  return flight;
 }
 
 Flight Flight::of_scenario_or_plant(const std::string& scenario, const std::string& plant,

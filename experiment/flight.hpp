@@ -44,11 +44,11 @@ class Flight {
   static Flight from_text(const std::string& text, const std::string& file, const RunControls& controls);
   // `plant` (named `name` in results) as it is (sim::NoDisturbances), from `initial_state`,
   // regulated to the origin for controls.duration (required). Throws thetad::Error naming what is
-  // wrong.
+  // wrong, controls.plant_settings among it (they set a registered plant's, below).
   static Flight of_plant(std::shared_ptr<const SdcPlant> plant, const std::string& name,
                          const Eigen::VectorXd& initial_state, const RunControls& controls);
-  // The same for the plant `name` of the registry (PlantRegistry), from its own initial state
-  // unless `initial_state` is given.
+  // The same for the plant `name` of the registry (PlantRegistry), built with controls.plant_settings,
+  // from its own initial state unless `initial_state` is given.
   static Flight of_plant(const std::string& name, const std::optional<Eigen::VectorXd>& initial_state,
                          const RunControls& controls);
 

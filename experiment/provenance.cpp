@@ -34,6 +34,7 @@ nlohmann::ordered_json to_json(const Provenance& p) {
   if (p.speed_scale) j["trajectory_speed_scale"] = *p.speed_scale;
   if (p.course) j["course_rad"] = *p.course;
   if (!p.initial_state.empty()) j["initial_state"] = p.initial_state;
+  if (!p.plant_settings.empty()) j["plant_settings"] = p.plant_settings;
   if (!p.host.empty()) j["host"] = p.host;
   if (!p.start_time.empty()) j["start_time_utc"] = p.start_time;
   return j;

@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -34,6 +35,8 @@ struct Provenance {
   std::optional<double> course;  // rad
   // Where a plant's flight starts (a scenario's file says it for the helicopter; empty there).
   std::vector<double> initial_state;
+  // A plant's settings that the run controls set over its scenario's (the factors plant.NAME).
+  std::map<std::string, double> plant_settings;
   // Wall-clock facts: empty when the run was asked for byte-identical output (no timing).
   std::string host;
   std::string start_time;  // UTC, ISO 8601

@@ -1,7 +1,9 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -51,6 +53,10 @@ struct RunControls {
   std::optional<double> speed_scale;
   // rad: the scenario's trajectory turned about its start (Scenario::turned), north towards east.
   std::optional<double> course;
+  // A plant's flight (docs/plants.md): its own settings over its scenario's plant_settings block
+  // (the factors plant.NAME), and entries of its initial state by index (initial_state.I).
+  std::map<std::string, double> plant_settings;
+  std::map<int, double> initial_state_entries;
   std::optional<bool> summary_only;      // true: no log, the summary only
   std::optional<bool> timing;            // false: no wall-clock figure anywhere (byte-identical reruns)
 };

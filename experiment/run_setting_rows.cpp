@@ -13,6 +13,7 @@
 #include "core/helicopter/uncertainty.hpp"
 #include "core/sim/seed.hpp"
 #include "experiment/disturbance_json.hpp"
+#include "experiment/plant_setting_rows.hpp"
 
 namespace thetad {
 
@@ -89,7 +90,7 @@ RunSetting scale_row(RunSetting row) {
 // fields of them) and the order a result's "settings" records them.
 std::vector<RunSetting> table() {
   using Settings = sim::SimulationSettings;
-  return {
+  std::vector<RunSetting> rows = {
       {.name = "ideal", .value = Value::on_off,
        .description = "no parameter uncertainty, noise, wind or actuator limits (before every other setting)",
        .apply = [](double v, RunControls& c) { c.ideal = switch_value(v); },
@@ -426,6 +427,9 @@ std::vector<RunSetting> table() {
        .replay = [](const Json& v, RunControls& c) { c.course = v.get<double>(); },
        .absent_until = RunSetting::kEveryVersion},
   };
+  // A plant's own, which act on its settings and initial state (Flight), last.
+  for (RunSetting& row : plant_setting_rows()) rows.push_back(std::move(row));
+  return rows;
 }
 
 }  // namespace

@@ -15,6 +15,19 @@ Json::json_pointer pointer(std::string_view dotted) {
 
 }  // namespace
 
+bool RunSetting::names(std::string_view factor) const {
+  if (!is_family()) return factor == name || (!earlier_name.empty() && factor == earlier_name);
+  const std::string_view prefix = name.substr(0, name.find('.') + 1);
+  return factor.size() > prefix.size() && factor.substr(0, prefix.size()) == prefix;
+}
+
+void RunSetting::set(std::string_view factor, double value, RunControls& controls) const {
+  if (is_family())
+    apply_named(factor, value, controls);
+  else
+    apply(value, controls);
+}
+
 const RunSetting* find_run_setting(std::string_view name) {
   for (const RunSetting& setting : run_settings()) {
     if (setting.name == name || (!setting.earlier_name.empty() && setting.earlier_name == name)) return &setting;

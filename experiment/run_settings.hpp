@@ -23,7 +23,8 @@ namespace thetad {
 struct RunSetting {
   // How a value is given (a campaign file, --set, the command line, Python).
   enum class Value {
-    none,    // not by a value: a vector or block (set as a whole by a replay), or a record only
+    none,    // not by a value: a vector or block (set as a whole by a replay), a record only, or a
+             // family of factors, each set by its own name (apply_named)
     number,  // a finite double in [min, max]
     whole,   // a whole number in [min, max]
     choice,  // one of `choices` by name, or its position
@@ -47,6 +48,11 @@ struct RunSetting {
   // Its column among the campaign factors (1 the first; the runs table's order, which the database
   // versions fixed); 0: not a factor.
   int factor_column = 0;
+  // A family of factors instead, one per name after the prefix of `name` ("plant.NAME": plant.epsilon
+  // and any other plant setting; "initial_state.I": initial_state.0, ...), each a finite number,
+  // set by its whole name. They have no column of their own: a campaign's database gives each one
+  // it names a column of that name (docs/campaigns.md).
+  void (*apply_named)(std::string_view name, double value, RunControls& controls) = nullptr;
   // Its name before docs/glossary.md, which campaign files and Python still take.
   std::string_view earlier_name = {};
   // A value, as a campaign file writes it, that changes a helicopter flight from thetad's defaults
@@ -77,7 +83,15 @@ struct RunSetting {
   // Where a scenario file says it (docs/scenarios.md); empty: only a run control.
   std::string_view file_key = {};
 
-  bool is_factor() const { return factor_column > 0; }
+  bool is_family() const { return apply_named != nullptr; }
+  bool is_factor() const { return factor_column > 0 || is_family(); }
+  // Whether `factor` is this row's name or, for a family, one of its members.
+  bool names(std::string_view factor) const;
+  // The factor `given` (one it names) under its current name: the row's (duration_s for duration),
+  // or a family member's own (plant.epsilon).
+  std::string current_name(std::string_view given) const { return std::string(is_family() ? given : name); }
+  // Sets the factor `factor` (this row's name, or a member of its family) to `value`.
+  void set(std::string_view factor, double value, RunControls& controls) const;
 };
 
 // Every run setting, in the order they act on a flight's settings and a result records them.

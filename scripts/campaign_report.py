@@ -29,8 +29,9 @@ FORMAT = "thetad-campaign-1"
 # factors course and actuator_limits, 4 turbulence_model, turbulence_intensity, turbulence_scale,
 # servo_delay and servo_time_constant (columns it reads only when they were swept), 5 docs/glossary.md's
 # names (OLD_NAMES, and the registered name in column controller), 6 the factor slowdown and the flight
-# computer's missed_deadlines, longest_missed_run and skipped_samples.
-FORMAT_VERSIONS = ("2", "3", "4", "5", "6")
+# computer's missed_deadlines, longest_missed_run and skipped_samples, 7 a column for each member of a
+# factor family the campaign names (plant.epsilon, initial_state.0).
+FORMAT_VERSIONS = ("2", "3", "4", "5", "6", "7")
 # The columns of versions 2 to 4 that version 5 renamed, to their docs/glossary.md names.
 OLD_NAMES = {
     "controller": "label",

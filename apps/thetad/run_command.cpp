@@ -126,7 +126,7 @@ void set_factor(const std::string& item, RunControls& controls) {
   if (equals == std::string::npos || factor == nullptr)
     throw CLI::ValidationError("--set", "'" + item + "': expected NAME=VALUE with NAME one of " + factor_names());
   try {
-    factor->apply(factor_value(*factor, item.substr(equals + 1)), controls);
+    factor->set(name, factor_value(*factor, item.substr(equals + 1)), controls);
   } catch (const Error& error) {
     throw CLI::ValidationError("--set", name + ": " + error.what());
   }

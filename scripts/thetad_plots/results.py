@@ -31,6 +31,7 @@ DISPLAY_UNITS = {
     "rad": ("deg", 180.0 / math.pi),
     "rad_per_s": ("deg/s", 180.0 / math.pi),
     "N": ("N", 1.0),
+    "N_m": ("N m", 1.0),
     "ns": ("µs", 1e-3),
     "": ("–", 1.0),  # a plant's dimensionless signals (the RTAC/TORA benchmark's)
 }
@@ -90,9 +91,9 @@ class RunSet:
         unit = self.units.get(column)
         if unit is None:
             raise PlotError(f"the thetad log schema has no column {column} (update thetad_plots)")
-        if unit not in DISPLAY_UNITS:
-            raise PlotError(f"column {column}: unit '{unit}' has no display rule in thetad_plots/results.py")
-        return DISPLAY_UNITS[unit]
+        # A unit without a rule (a plug-in plant's "kg_m2") is shown as the schema writes it, unscaled:
+        # a plant of one's own plots without an edit here.
+        return DISPLAY_UNITS.get(unit, (unit.replace("_per_", "/"), 1.0))
 
     def longest(self):
         """The run that flew longest: the command is the same for every run of a folder, and a run

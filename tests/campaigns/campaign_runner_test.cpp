@@ -155,12 +155,12 @@ TEST_F(CampaignRunner, ResumeAndMergeRefuseADatabaseOfAnEarlierFormatVersionSayi
   }
   EXPECT_FALSE(fs::exists(scratch_.path() / "merged"));
   // A database of a newer thetad is refused by every reader, saying so.
-  set_format_version(store_file(first.out), "7");
+  set_format_version(store_file(first.out), "8");
   try {
     CampaignStore newer(store_file(first.out));
     FAIL() << "opened a database of a newer format";
   } catch (const Error& error) {
-    EXPECT_THAT(error.what(), HasSubstr("written by a newer thetad (format_version 7; this one reads up to 6)"));
+    EXPECT_THAT(error.what(), HasSubstr("written by a newer thetad (format_version 8; this one reads up to 7)"));
   }
 }
 

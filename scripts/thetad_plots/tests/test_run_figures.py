@@ -202,3 +202,11 @@ def test_compute_time_marks_the_budget_on_a_log_axis(figures):
     assert ax.get_ylabel() == "control() wall time (µs)"
     assert "budget at 1 kHz (1000 µs)" in all_text(figures["compute_time"])
     assert named_lines(ax)[:len(LABELS)] == LABELS
+
+
+def test_a_unit_without_a_display_rule_is_shown_as_the_schema_writes_it():
+    # A plug-in plant's own units plot unscaled, not refused.
+    runs = results.RunSet("mine", 1, "ideal", "", [], {"inertia": "kg_m2", "theta_dot": "rad_per_s", "v": "m_per_kg"})
+    assert runs.display("inertia") == ("kg_m2", 1.0)
+    assert runs.display("v") == ("m/kg", 1.0)
+    assert runs.display("theta_dot") == results.DISPLAY_UNITS["rad_per_s"]
