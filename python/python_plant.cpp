@@ -100,6 +100,10 @@ std::vector<LogColumn> PythonPlant::columns(const char* attribute, std::vector<L
                             py::repr(name).cast<std::string>());
     }
     if (columns.back().name.empty()) throw py::value_error(what + ": a name is empty");
+    for (std::size_t i = 0; i + 1 < columns.size(); ++i) {
+      if (columns[i].header() == columns.back().header())
+        throw py::value_error(what + ": two columns would be called " + columns[i].header());
+    }
   }
   return columns;
 }

@@ -59,6 +59,27 @@ def test_the_tora_in_python_flies_as_the_shipped_one(controller):
     assert python.summary["cost"] == shipped.summary["cost"]
 
 
+class StiffTorque(Pendulum):
+    """The torque through a stiffening gain, u (1 + u²/100): B depends on u."""
+
+    sdc_depends_on_input = True
+
+    def f(self, x, u):
+        return np.array([x[1], self.a * math.sin(x[0]) - self.b * x[1] + u[0] * (1.0 + u[0] ** 2 / 100.0)])
+
+    def sdc(self, x, u):
+        F, _ = super().sdc(x, u)
+        return F, np.array([[0.0], [1.0 + u[0] ** 2 / 100.0]])
+
+
+def test_coefficients_that_depend_on_the_input_are_flown_to_the_fixed_point():
+    assert StiffTorque().sdc_residual([0.5, 0.2], [3.0]) < 1e-15
+    runs = thetad.compare(controllers=["theta-d", "sdre"], plant=StiffTorque(), initial_state=[0.2, 0.0], duration_s=2,
+                          timing=False)
+    for run in runs:
+        assert run.completed and abs(run.log[-1, 1]) < 0.01, run.reason
+
+
 def test_optimal_takes_a_python_plant_and_its_jacobian():
     same = dict(horizon=0.5, cost="j", control_interval=0.1, timing=False)
     python = thetad.optimal(controllers=["sdre"], plant=PythonTora(), **same)
@@ -135,6 +156,9 @@ def test_what_a_plant_class_gets_wrong_is_named_before_anything_flies():
     class Misnamed(Pendulum):
         state_names = ["theta"]
 
+    class NamedTwice(Pendulum):
+        state_names = [("theta", "rad"), "theta_rad"]
+
     flight = dict(controller="sdre", initial_state=[0.5, 0.0], duration_s=1)
     with pytest.raises(ValueError, match="NoDimensions.state_dim must be a positive int, got None"):
         thetad.run(plant=NoDimensions(), **flight)
@@ -142,6 +166,8 @@ def test_what_a_plant_class_gets_wrong_is_named_before_anything_flies():
         thetad.run(plant=NoSdc(), **flight)
     with pytest.raises(ValueError, match="Misnamed.state_names must be a list of 2 names"):
         thetad.run(plant=Misnamed(), **flight)
+    with pytest.raises(ValueError, match="NamedTwice.state_names: two columns would be called theta_rad"):
+        thetad.run(plant=NamedTwice(), **flight)
     with pytest.raises(TypeError, match="or a thetad.Plant subclass instance, got int"):
         thetad.run(plant=3, **flight)
     with pytest.raises(thetad.Error, match="python:Pendulum: give initial_state"):
