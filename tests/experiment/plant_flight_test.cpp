@@ -125,32 +125,24 @@ TEST(PlantFlight, AStateBeyondTheBoundEndsTheRun) {
   EXPECT_EQ(run.log.rows(), run.summary.controller_samples);
 }
 
-// ẋ = −x + u, whose f throws `Failure` once x falls below 0.5.
+// ẋ = −x + u, whose coefficient throws `Failure` once x falls below 0.5: in f first, within the RK4
+// step that crosses it, before any controller sample sees it.
 template <class Failure>
-class FailingPlant final : public SdcPlant {
- public:
-  int state_dim() const override { return 1; }
-  int input_dim() const override { return 1; }
-  using SdcPlant::f;
-  using SdcPlant::sdc;
-  void f(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& u,
-         Eigen::Ref<Eigen::VectorXd> xdot) const override {
-    if (x[0] < 0.5) throw Failure("f gave up");
-    xdot = u - x;
-  }
-  void sdc(const Eigen::Ref<const Eigen::VectorXd>&, const Eigen::Ref<const Eigen::VectorXd>&,
-           Eigen::Ref<Eigen::MatrixXd> F, Eigen::Ref<Eigen::MatrixXd> B) const override {
-    F(0, 0) = -1.0;
-    B(0, 0) = 1.0;
-  }
-};
+std::shared_ptr<const SdcPlant> failing_plant() {
+  return std::make_shared<testing::ScalarPlant>(
+      [](double x) {
+        if (x < 0.5) throw Failure("f gave up");
+        return -1.0;
+      },
+      [](double, double) { return 1.0; }, false);
+}
 
 // A plant whose code fails (PlantCodeError: a plant written in Python raised) ends its run as
 // failed, the code's fault; any other error of the plant as diverged, the closed loop's.
 TEST(PlantFlight, APlantWhoseCodeFailsEndsItsRunAsFailed) {
   const Eigen::VectorXd x0 = Eigen::VectorXd::Ones(1);
-  const RunResult failed = fly(std::make_shared<const FailingPlant<PlantCodeError>>(), "sdre", x0, seconds(2.0));
-  const RunResult diverged = fly(std::make_shared<const FailingPlant<Error>>(), "sdre", x0, seconds(2.0));
+  const RunResult failed = fly(failing_plant<PlantCodeError>(), "sdre", x0, seconds(2.0));
+  const RunResult diverged = fly(failing_plant<Error>(), "sdre", x0, seconds(2.0));
   EXPECT_EQ(failed.summary.status, sim::RunStatus::failed);
   EXPECT_EQ(diverged.summary.status, sim::RunStatus::diverged);
   for (const auto* flown : {&failed, &diverged}) {
