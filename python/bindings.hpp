@@ -10,6 +10,7 @@ namespace thetad::python {
 void bind_numerics(pybind11::module_& module);     // numerics.cpp: care, lqr, lyap
 void bind_model(pybind11::module_& module);        // model.cpp: Helicopter, trim, names
 void bind_controllers(pybind11::module_& module);  // controllers.cpp: Controller, controller()
+void bind_plants(pybind11::module_& module);       // plants.cpp: what thetad.Plant calls
 void bind_flights(pybind11::module_& module);      // flights.cpp: run, compare, RunResult
 void bind_bench(pybind11::module_& module);        // benchmark.cpp: bench
 void bind_optimal(pybind11::module_& module);      // optimality.cpp: optimal, Optimality

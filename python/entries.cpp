@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "campaigns/factors.hpp"
+#include "core/error.hpp"
 #include "experiment/run_settings.hpp"
 #include "python/python_controller.hpp"
 
@@ -103,12 +104,26 @@ PreparedController prepare(const Flight& flight, Entry& entry) {
   return entry.spec ? flight.prepare(*entry.spec) : std::move(*entry.python);
 }
 
-Flight flight_of(const std::optional<std::string>& scenario, const std::optional<std::string>& plant,
+PlantArgument plant_argument(py::handle plant) {
+  if (plant.is_none()) return {};
+  if (py::isinstance<py::str>(plant)) return {plant.cast<std::string>(), nullptr};
+  if (py::isinstance(plant, py::module_::import("thetad.plant").attr("Plant")))
+    return {{}, std::make_shared<const PythonPlant>(py::reinterpret_borrow<py::object>(plant))};
+  throw py::type_error("plant: expected a registered plant's name (str, thetad.plants()) or a thetad.Plant subclass "
+                       "instance, got " +
+                       py::str(py::type::of(plant).attr("__name__")).cast<std::string>());
+}
+
+Flight flight_of(const std::optional<std::string>& scenario, const PlantArgument& plant,
                  const std::optional<std::vector<double>>& initial_state, const RunControls& controls) {
   std::optional<Eigen::VectorXd> x0;
   if (initial_state)
     x0 = Eigen::Map<const Eigen::VectorXd>(initial_state->data(), static_cast<Eigen::Index>(initial_state->size()));
-  return Flight::of_scenario_or_plant(scenario.value_or(""), plant.value_or(""), x0, controls);
+  if (!plant.python) return Flight::of_scenario_or_plant(scenario.value_or(""), plant.name, x0, controls);
+  if (scenario) throw Error("a flight needs a scenario or a plant, not both");
+  if (!x0 && !plant.python->initial_state())
+    throw Error("plant " + plant.python->name() + ": give initial_state (the class has no initial_state of its own)");
+  return Flight::of_plant(plant.python, plant.python->name(), x0 ? *x0 : *plant.python->initial_state(), controls);
 }
 
 }  // namespace thetad::python

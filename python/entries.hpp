@@ -1,8 +1,9 @@
 #pragma once
 
 // What every flight-flying binding (run, compare, bench, optimal) takes from its caller: the run
-// controls as keywords and the controllers as names, specs or Python objects.
+// controls as keywords, the controllers as names, specs or Python objects, and the plant.
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -12,6 +13,7 @@
 #include "experiment/controller_spec.hpp"
 #include "experiment/flight.hpp"
 #include "experiment/run_controls.hpp"
+#include "python/python_plant.hpp"
 
 namespace thetad::python {
 
@@ -36,9 +38,18 @@ std::vector<Entry> entries_of(const py::sequence& controllers);
 
 ControllerSpec& spec_of(Entry& entry);
 
-// The flight of `scenario` (a file or a shipped name; a file may name a plant) or of the registered
-// `plant` from `initial_state` (its own when none): Flight::of_scenario_or_plant.
-Flight flight_of(const std::optional<std::string>& scenario, const std::optional<std::string>& plant,
+// The plant= of a flight as the caller gave it: none, a registered plant's name, or a thetad.Plant
+// instance, read (with the GIL) when this is made. TypeError for anything else.
+struct PlantArgument {
+  std::string name;                           // a registered plant's, or empty
+  std::shared_ptr<const PythonPlant> python;  // or a plant written in Python
+};
+PlantArgument plant_argument(py::handle plant);
+
+// The flight of `scenario` (a file or a shipped name; a file may name a plant) or of `plant` from
+// `initial_state` (its own when none): Flight::of_scenario_or_plant, or Flight::of_plant for a plant
+// written in Python. Needs no GIL.
+Flight flight_of(const std::optional<std::string>& scenario, const PlantArgument& plant,
                  const std::optional<std::vector<double>>& initial_state, const RunControls& controls);
 
 // The entry's controller for `flight`: built from its spec, or the Python object itself (moved out

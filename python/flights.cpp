@@ -83,11 +83,12 @@ void bind_flights(py::module_& module) {
 
   module.def(
       "run",
-      [](const std::optional<std::string>& scenario, py::handle controller, const std::optional<std::string>& plant,
+      [](const std::optional<std::string>& scenario, py::handle controller, py::handle plant,
          const std::optional<std::vector<double>>& initial_state, std::optional<std::string> label, py::object progress,
          const py::kwargs& controls) {
         if (controller.is_none()) throw py::type_error("run: give the controller to fly");
         const RunControls parsed = run_controls(controls);
+        const PlantArgument flown = plant_argument(plant);
         Entry entry = entry_of(controller);
         if (label) spec_of(entry).label = *label;
         check_label(spec_of(entry).label);
@@ -96,7 +97,7 @@ void bind_flights(py::module_& module) {
         RunResult result;
         {
           py::gil_scoped_release unlocked;
-          const Flight flight = flight_of(scenario, plant, initial_state, parsed);
+          const Flight flight = flight_of(scenario, flown, initial_state, parsed);
           prepared = prepare(flight, entry);
           result = flight.fly(prepared, nullptr, {}, observer.hook(spec_of(entry).label, flight.settings().duration));
         }
@@ -108,8 +109,8 @@ void bind_flights(py::module_& module) {
       py::arg("progress") = py::none(),
       "Flies `controller` (a registered name or spec string, thetad.controller(...), or a thetad.Controller "
       "subclass instance) through `scenario` (a file or a shipped scenario's name; a file may name a plant, "
-      "docs/plants.md), or regulates the registered `plant` (thetad.plants()) from `initial_state` (its own when "
-      "None; then duration_s is needed). Run controls as keywords: "
+      "docs/plants.md), or regulates `plant` (a registered plant's name, thetad.plants(), or a thetad.Plant subclass "
+      "instance) from `initial_state` (its own when None; then duration_s is needed). Run controls as keywords: "
       "seed, duration_s, dt_s, log_every, summary_only, timing, ideal, the disturbance switches, actuator_limits and "
       "anti_windup (duration and dt, the earlier names, still work). progress: None or progress(t, duration), "
       "called with the simulated seconds at most 10 times a second and once at the end. Ctrl-C stops the flight "
@@ -117,17 +118,17 @@ void bind_flights(py::module_& module) {
 
   module.def(
       "compare",
-      [](const std::optional<std::string>& scenario, const std::optional<py::sequence>& controllers,
-         const std::optional<std::string>& plant, const std::optional<std::vector<double>>& initial_state,
-         py::object progress, const py::kwargs& controls) {
+      [](const std::optional<std::string>& scenario, const std::optional<py::sequence>& controllers, py::handle plant,
+         const std::optional<std::vector<double>>& initial_state, py::object progress, const py::kwargs& controls) {
         if (!controllers) throw py::type_error("compare: give the controllers to fly");
         const RunControls parsed = run_controls(controls);
+        const PlantArgument flown = plant_argument(plant);
         std::vector<Entry> entries = entries_of(*controllers);
         std::vector<PreparedController> prepared;
         TaskObserver observer(std::move(progress));
         std::vector<RunResult> results;
         py::gil_scoped_release unlocked;
-        const Flight flight = flight_of(scenario, plant, initial_state, parsed);
+        const Flight flight = flight_of(scenario, flown, initial_state, parsed);
         for (Entry& entry : entries) prepared.push_back(prepare(flight, entry));
         for (PreparedController& controller : prepared) {
           const auto observe = observer.hook(controller.spec.label, flight.settings().duration);

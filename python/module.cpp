@@ -12,6 +12,7 @@ PYBIND11_MODULE(_thetad, module) {
   thetad::python::bind_numerics(module);
   thetad::python::bind_model(module);
   thetad::python::bind_controllers(module);
+  thetad::python::bind_plants(module);
   thetad::python::bind_flights(module);
   thetad::python::bind_bench(module);
   thetad::python::bind_optimal(module);

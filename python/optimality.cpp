@@ -52,9 +52,12 @@ void bind_optimal(py::module_& module) {
 
   module.def(
       "optimal",
-      [](const std::string& scenario, const py::sequence& controllers, double horizon, double start,
-         const std::string& cost, bool actuator_limits, double control_interval, std::optional<std::string> warm_start,
-         int max_iterations, double tolerance, std::optional<std::string> out, bool timing, py::object progress) {
+      [](const std::optional<std::string>& scenario, const std::optional<py::sequence>& controllers, py::handle plant,
+         const std::optional<std::vector<double>>& initial_state, double horizon, double start, const std::string& cost,
+         bool actuator_limits, double control_interval, std::optional<std::string> warm_start, int max_iterations,
+         double tolerance, std::optional<std::string> out, bool timing, py::object progress) {
+        if (!controllers) throw py::type_error("optimal: give the controllers to fly");
+        const PlantArgument flown = plant_argument(plant);
         RunControls controls;
         controls.duration = start + horizon;
         controls.ideal = true;  // the optimum is that of the nominal plant with ideal sensors
@@ -69,12 +72,12 @@ void bind_optimal(py::module_& module) {
         options.warm_start = warm_start.value_or("");
         options.solver.ipopt.max_iterations = max_iterations;
         options.solver.ipopt.tolerance = tolerance;
-        std::vector<Entry> entries = entries_of(controllers);
+        std::vector<Entry> entries = entries_of(*controllers);
         TaskObserver observer(std::move(progress));
         Optimality result;
         {
           py::gil_scoped_release unlocked;
-          const Flight flight(scenario, controls);
+          const Flight flight = flight_of(scenario, flown, initial_state, controls);
           // A segment off the grid fails before the controllers are built.
           if (optimality_problem(flight, options).finite_differences) {
             py::gil_scoped_acquire locked;
@@ -94,12 +97,13 @@ void bind_optimal(py::module_& module) {
         }
         return result;
       },
-      py::arg("scenario"), py::arg("controllers"), py::kw_only(), py::arg("horizon"), py::arg("start") = 0.0,
+      py::arg("scenario") = py::none(), py::arg("controllers") = py::none(), py::kw_only(), py::arg("plant") = py::none(),
+      py::arg("initial_state") = py::none(), py::arg("horizon"), py::arg("start") = 0.0,
       py::arg("cost") = "j-dev", py::arg("actuator_limits") = false, py::arg("control_interval") = 0.05,
       py::arg("warm_start") = py::none(), py::arg("max_iterations") = 1000, py::arg("tolerance") = 1e-6,
       py::arg("out") = py::none(), py::arg("timing") = true, py::arg("progress") = py::none(),
       "`thetad optimal`: each controller's cost (cost='j-dev' or 'j') over `horizon` seconds from `start`, flown "
-      "ideal, and its gap to the optimum of the same problem (Ipopt, multiple shooting; with actuator_limits "
+      "ideal through `scenario` (or `plant` from `initial_state`, as for run), and its gap to the optimum of the same problem (Ipopt, multiple shooting; with actuator_limits "
       "bounded by their magnitudes, then unbounded). Returns an Optimality (report, runs, converged); with `out` "
       "also writes what the command writes there. progress(done, total) per task (flights, then Ipopt "
       "iterations); Ctrl-C raises KeyboardInterrupt.");

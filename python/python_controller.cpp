@@ -4,28 +4,9 @@
 
 #include "core/error.hpp"
 #include "python/arrays.hpp"
+#include "python/python_errors.hpp"
 
 namespace thetad::python {
-
-namespace {
-
-// "ZeroDivisionError: division by zero", without the traceback.
-std::string describe(const py::error_already_set& error) {
-  std::string text = py::str(error.type().attr("__name__")).cast<std::string>();
-  text += ": ";
-  text += py::str(error.value()).cast<std::string>();
-  return text;
-}
-
-// A Ctrl-C that a controller's Python code received (the signal is handled where Python runs)
-// would end the run as failed and be lost: it is raised again for the front end, which checks for
-// signals once the flight has ended (TaskObserver::finished). Last, after every other call into
-// Python: the interpreter may check for signals inside one and raise it there already.
-void pass_on_interrupt(const py::error_already_set& error) {
-  if (error.matches(PyExc_KeyboardInterrupt)) PyErr_SetInterrupt();
-}
-
-}  // namespace
 
 std::string PythonController::class_name() const {
   py::gil_scoped_acquire gil;

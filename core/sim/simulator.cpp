@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "core/plant_code_error.hpp"
 #include "core/sim/rk4.hpp"
 #include "core/sim/run_metrics.hpp"
 #include "core/sim/worst_certificates.hpp"
@@ -30,11 +31,12 @@ std::int64_t call_control(ControlLaw& law, double t, const Eigen::VectorXd& meas
 // The controller period's RK4 steps from t: `previous` (the input acting before this period) up to
 // `arrival` into the period, `applied` from there (zero-order hold); the plant step that the arrival
 // falls in is split there. On divergence, t becomes the end of the step that diverged and the
-// reason is returned.
+// reason is returned; `code_failed` says whether the plant's code failed (PlantCodeError).
 std::optional<std::string> hold_for_one_period(const SdcPlant& plant, Disturbances& disturbances,
                                                const Eigen::VectorXd& previous, const Eigen::VectorXd& applied,
                                                double arrival, const SimulationSettings& settings,
-                                               Rk4Workspace& workspace, Eigen::VectorXd& x, double& t) {
+                                               Rk4Workspace& workspace, Eigen::VectorXd& x, double& t,
+                                               bool& code_failed) {
   for (int step = 1; step <= settings.controller_period_steps; ++step) {
     const double t_end = t + step * settings.dt;
     const double begins = (step - 1) * settings.dt, ends = step * settings.dt;
@@ -51,6 +53,7 @@ std::optional<std::string> hold_for_one_period(const SdcPlant& plant, Disturbanc
       failure = disturbances.check(x, t_end);
     } catch (const Error& error) {
       failure = failure_reason("plant", error, t_end);
+      code_failed = dynamic_cast<const PlantCodeError*>(&error) != nullptr;
     }
     if (failure) {
       t = t_end;
@@ -189,6 +192,7 @@ RunResult simulate(ControlLaw& law, Disturbances& disturbances, const ReferenceT
 
   std::optional<std::string> failure = disturbances.check(x, 0.0);
   bool controller_failed = false;
+  bool code_failed = false;  // the plant's (PlantCodeError)
   try {
     law.reset(x0, 0.0);
   } catch (const std::exception& error) {
@@ -250,12 +254,12 @@ RunResult simulate(ControlLaw& law, Disturbances& disturbances, const ReferenceT
     true_error_integral.accumulate(padded_error, period);
 
     failure = hold_for_one_period(plant, disturbances, previous, applied, arrival.value_or(0.0), settings, workspace,
-                                  x, t);
+                                  x, t, code_failed);
     previous = applied;
   }
 
   if (failure) {
-    summary.status = controller_failed ? RunStatus::failed : RunStatus::diverged;
+    summary.status = controller_failed || code_failed ? RunStatus::failed : RunStatus::diverged;
     summary.reason = *failure;
     summary.end_time = t;
   } else {

@@ -3,7 +3,8 @@
 The numerics (care, lqr, dare, dlqr, lyap), the model (Helicopter), the registered controllers (controller,
 controllers), controllers written in Python (subclasses of Controller), flights (run, compare) and the
 workflows (bench, optimal, campaign_run, tune) come from the C++ library through the extension module
-thetad._thetad; plot and campaign_report draw with the shipped scripts. docs/python.md is the guide.
+thetad._thetad; plot and campaign_report draw with the shipped scripts; a plant written in Python derives
+from Plant (thetad/plant.py). docs/python.md is the guide.
 """
 
 import os as _os
@@ -70,10 +71,11 @@ _thetad._load_plugins_from_environment()
 
 from .campaigns import CampaignReport, campaign_report  # noqa: E402
 from .figures import plot  # noqa: E402
+from .plant import Plant  # noqa: E402
 
 __all__ = [
     "CampaignReport", "CareResult", "Controller", "DareResult", "DesignDefaults", "Error", "Helicopter", "Linearization",
-    "Optimality", "Reference", "RegisteredController", "RunResult", "Trim", "bench", "campaign_report", "campaign_run",
-    "care", "compare", "comparison_table", "controller", "controllers", "dare", "dlqr", "input_names", "linearize",
+    "Optimality", "Plant", "Reference", "RegisteredController", "RunResult", "Trim", "bench", "campaign_report",
+    "campaign_run", "care", "compare", "comparison_table", "controller", "controllers", "dare", "dlqr", "input_names", "linearize",
     "load_plugin", "lqr", "lyap", "optimal", "plants", "plot", "run", "state_names", "tune", "uncertainty_draw",
 ]

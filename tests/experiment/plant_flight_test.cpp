@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.hpp"
+#include "core/plant_code_error.hpp"
 #include "experiment/flight.hpp"
 #include "tests/controllers/scalar_plant.hpp"
 #include "tests/error_message.hpp"
@@ -122,6 +123,34 @@ TEST(PlantFlight, AStateBeyondTheBoundEndsTheRun) {
   EXPECT_THAT(run.summary.reason, HasSubstr("exceeds 1e+06"));
   EXPECT_NEAR(run.summary.end_time, std::log(1e6) / 5.0, 2e-3);  // e^(5 t) = 1e6
   EXPECT_EQ(run.log.rows(), run.summary.controller_samples);
+}
+
+// ẋ = −x + u, whose coefficient throws `Failure` once x falls below 0.5: in f first, within the RK4
+// step that crosses it, before any controller sample sees it.
+template <class Failure>
+std::shared_ptr<const SdcPlant> failing_plant() {
+  return std::make_shared<testing::ScalarPlant>(
+      [](double x) {
+        if (x < 0.5) throw Failure("f gave up");
+        return -1.0;
+      },
+      [](double, double) { return 1.0; }, false);
+}
+
+// A plant whose code fails (PlantCodeError: a plant written in Python raised) ends its run as
+// failed, the code's fault; any other error of the plant as diverged, the closed loop's.
+TEST(PlantFlight, APlantWhoseCodeFailsEndsItsRunAsFailed) {
+  const Eigen::VectorXd x0 = Eigen::VectorXd::Ones(1);
+  const RunResult failed = fly(failing_plant<PlantCodeError>(), "sdre", x0, seconds(2.0));
+  const RunResult diverged = fly(failing_plant<Error>(), "sdre", x0, seconds(2.0));
+  EXPECT_EQ(failed.summary.status, sim::RunStatus::failed);
+  EXPECT_EQ(diverged.summary.status, sim::RunStatus::diverged);
+  for (const auto* flown : {&failed, &diverged}) {
+    EXPECT_THAT(flown->summary.reason, HasSubstr("plant failed at t = "));
+    EXPECT_THAT(flown->summary.reason, HasSubstr(": f gave up"));
+    EXPECT_GT(flown->summary.end_time, 0.1);
+    EXPECT_LT(flown->summary.end_time, 2.0);
+  }
 }
 
 }  // namespace
