@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "campaigns/factors.hpp"
-#include "experiment/run_settings.hpp"
+#include "settings/run_settings.hpp"
 #include "python/python_controller.hpp"
 
 namespace thetad::python {

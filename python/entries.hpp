@@ -11,7 +11,7 @@
 
 #include "experiment/controller_spec.hpp"
 #include "experiment/flight.hpp"
-#include "experiment/run_controls.hpp"
+#include "settings/run_controls.hpp"
 
 namespace thetad::python {
 
