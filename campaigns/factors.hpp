@@ -6,13 +6,13 @@
 #include <utility>
 #include <vector>
 
-#include "experiment/run_controls.hpp"
-#include "experiment/run_settings.hpp"
+#include "settings/run_controls.hpp"
+#include "settings/run_settings.hpp"
 
 namespace thetad {
 
 // The conditions a campaign may fix or sweep: the run settings with a factor column
-// (experiment/run_settings.hpp), so a campaign's cell means what `thetad run` with the same
+// (settings/run_settings.hpp), so a campaign's cell means what `thetad run` with the same
 // override means. A factor's value is a number (a choice's position, a switch's 0 or 1).
 using Factor = RunSetting;
 

@@ -11,7 +11,7 @@
 #include "experiment/controller_spec.hpp"
 #include "experiment/progress.hpp"
 #include "experiment/provenance.hpp"
-#include "experiment/run_controls.hpp"
+#include "settings/run_controls.hpp"
 
 namespace thetad {
 

@@ -90,8 +90,8 @@ Flight::Flight(const Scenario& parsed, const RunControls& controls)
   helicopter_ = helicopter.get();
   plant_ = helicopter;
   // A replay gives the computer as recorded, step times included: the bench file is not read again.
-  if (scenario_.beyond_paper.step_time_file && !controls.beyond_paper.computer)
-    load_step_times(*scenario_.beyond_paper.step_time_file, settings_.computer);
+  if (scenario_.simulation.beyond_paper.step_time_file && !controls.beyond_paper.computer)
+    load_step_times(*scenario_.simulation.beyond_paper.step_time_file, settings_.computer);
   apply(controls, settings_);
   provenance_.build = build_info();
   provenance_.plant = "helicopter";

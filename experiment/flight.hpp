@@ -14,7 +14,7 @@
 #include "experiment/controller_spec.hpp"
 #include "experiment/progress.hpp"
 #include "experiment/provenance.hpp"
-#include "experiment/run_controls.hpp"
+#include "settings/run_controls.hpp"
 #include "experiment/run_result.hpp"
 #include "scenarios/scenario.hpp"
 

@@ -15,7 +15,7 @@
 #include "experiment/sha256.hpp"
 #include "experiment/json_file.hpp"
 #include "experiment/plant_registry.hpp"
-#include "experiment/run_settings.hpp"
+#include "settings/run_settings.hpp"
 
 namespace thetad {
 

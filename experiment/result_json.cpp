@@ -4,7 +4,7 @@
 #include <string_view>
 
 #include "core/error.hpp"
-#include "experiment/run_settings.hpp"
+#include "settings/run_settings.hpp"
 
 namespace thetad {
 

@@ -1,7 +1,7 @@
 #pragma once
 
 #include "core/sim/flight_computer.hpp"
-#include "scenarios/disturbance_blocks.hpp"
+#include "settings/disturbance_blocks.hpp"
 
 namespace thetad {
 

@@ -7,7 +7,7 @@
 
 #include "campaigns/factors.hpp"
 #include "core/error.hpp"
-#include "experiment/run_settings.hpp"
+#include "settings/run_settings.hpp"
 #include "python/python_controller.hpp"
 
 namespace thetad::python {

@@ -12,8 +12,8 @@
 
 #include "experiment/controller_spec.hpp"
 #include "experiment/flight.hpp"
-#include "experiment/run_controls.hpp"
 #include "python/python_plant.hpp"
+#include "settings/run_controls.hpp"
 
 namespace thetad::python {
 

@@ -7,12 +7,12 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "settings/run_settings.hpp"
 #include "settings/settings.hpp"
 #include "settings/yaml_document.hpp"
 #include "core/error.hpp"
 #include "core/text_file.hpp"
 #include "core/helicopter/state.hpp"
-#include "core/helicopter/uncertainty.hpp"
 
 namespace thetad {
 
@@ -140,11 +140,6 @@ Eigen::VectorXd read_initial_state(const YAML::Node& root) {
   return x0;
 }
 
-std::optional<bool> optional_boolean(const Settings& block, const std::string& key) {
-  if (!block.has(key)) return std::nullopt;
-  return block.boolean(key, false);
-}
-
 heli::ModelOptions read_model(const YAML::Node& node, std::string& preset) {
   const Settings model(node, "simulation.model");
   preset = model.choice("preset", "resolved", {"resolved", "paper"});
@@ -175,7 +170,7 @@ heli::ModelOptions read_model(const YAML::Node& node, std::string& preset) {
 // defaults for what it does not say) are checked here, naming the field that sets them.
 void check_flight_length(const Settings& top, const Settings& simulation, const Scenario& scenario) {
   const sim::SimulationSettings settings = scenario.simulation_settings({});
-  const Settings& says_duration = scenario.simulation_duration ? simulation : top;
+  const Settings& says_duration = scenario.simulation.duration ? simulation : top;
   if (settings.duration > sim::SimulationSettings::kMaxDuration)
     throw says_duration.error("duration", "at most 86400 s (one simulated day)");
   const double period = settings.controller_period();
@@ -197,76 +192,13 @@ void check_flight_length(const Settings& top, const Settings& simulation, const 
                        seconds(settings.duration));
 }
 
-// simulation.disturbances.parameter_deviations: {NAME: xi, ...} over Table 1's parameter names.
-std::vector<double> read_parameter_deviations(const Settings& disturbances) {
-  if (!disturbances.has("parameter_deviations")) return {};
-  const Settings deviations = disturbances.block("parameter_deviations");
-  const auto names = heli::parameter_uncertainty_names();
-  std::string allowed;
-  for (const auto name : names) allowed += (allowed.empty() ? "" : ", ") + std::string(name);
-  for (const auto& item : deviations.node()) {
-    const std::string key = item.first.as<std::string>();
-    if (std::find(names.begin(), names.end(), key) == names.end())
-      throw deviations.error(key, "not a parameter of Table 1 (docs/model.md §9.1; allowed: " + allowed + ")");
-  }
-  std::vector<double> xi(names.size(), 0.0);
-  for (std::size_t i = 0; i < names.size(); ++i) xi[i] = deviations.number(std::string(names[i]), 0.0, -1.0, 1.0);
-  return xi;
-}
-
+// The `simulation:` block: what the run settings' rows read (settings/run_settings.hpp), and the
+// model, which only a scenario says.
 void read_simulation(const YAML::Node& root, Scenario& scenario) {
-  const YAML::Node node = child(root, "simulation");
-  const Settings simulation(node, "simulation");
-  simulation.allow_only({"duration", "dt", "controller_period_steps", "log_every", "summary_only", "timing", "seed",
-                         "actuator_limits", "anti_windup", "disturbances", "model", "wind", "sensor_noise",
-                         "servos", "computer"});
-  if (simulation.has("duration")) scenario.simulation_duration = positive(simulation, "duration");
-  if (simulation.has("dt")) scenario.dt = positive(simulation, "dt");
-  if (simulation.has("log_every")) scenario.log_every = simulation.integer("log_every", 1, 1);
-  scenario.summary_only = optional_boolean(simulation, "summary_only");
-  scenario.timing = optional_boolean(simulation, "timing");
-  scenario.actuator_limits = optional_boolean(simulation, "actuator_limits");
-  scenario.anti_windup = optional_boolean(simulation, "anti_windup");
-  if (simulation.has("controller_period_steps")) {
-    scenario.controller_period_steps = simulation.integer("controller_period_steps", 1, 1);
-  } else if (scenario.dt) {
-    // The controller keeps sampling at 1 kHz with zero-order hold: a plant step must divide 1 ms
-    // (or the file says the controller period in steps).
-    const double period = sim::SimulationSettings{}.controller_period(), steps = std::round(period / *scenario.dt);
-    if (steps > std::numeric_limits<int>::max())
-      throw simulation.error("dt", seconds(*scenario.dt) + ": more than 2^31 - 1 plant steps per controller period " +
-                                       seconds(period));
-    if (steps < 1.0 || std::abs(steps * *scenario.dt - period) > 1e-9 * period) {
-      std::ostringstream reason;
-      reason << *scenario.dt << " s does not divide the controller period " << period
-             << " s (the controller samples at 1 kHz with zero-order hold; or give controller_period_steps)";
-      throw simulation.error("dt", reason.str());
-    }
-    scenario.controller_period_steps = static_cast<int>(steps);
-  }
-  if (simulation.has("seed")) scenario.seed = simulation.seed("seed", 1);
-
-  const Settings disturbances(child(node, "disturbances"), "simulation.disturbances");
-  disturbances.allow_only({"parameter_uncertainty", "wind_gust", "measurement_noise", "measurement_noise_on",
-                           "actuator_noise", "wind_noise", "induced_velocity_noise", "parameter_deviations"});
-  scenario.parameter_uncertainty = optional_boolean(disturbances, "parameter_uncertainty");
-  scenario.wind_gust = optional_boolean(disturbances, "wind_gust");
-  scenario.measurement_noise = optional_boolean(disturbances, "measurement_noise");
-  if (disturbances.has("measurement_noise_on")) {
-    scenario.measurement_noise_on =
-        disturbances.choice("measurement_noise_on", "", {"feedback_signal", "absolute_state"}) == "feedback_signal"
-            ? sim::MeasurementNoiseOn::feedback_signal
-            : sim::MeasurementNoiseOn::absolute_state;
-  }
-  scenario.actuator_noise = optional_boolean(disturbances, "actuator_noise");
-  scenario.wind_noise = optional_boolean(disturbances, "wind_noise");
-  scenario.induced_velocity_noise = optional_boolean(disturbances, "induced_velocity_noise");
-  scenario.parameter_deviations = read_parameter_deviations(disturbances);
-
-  scenario.beyond_paper =
-      read_disturbance_blocks(child(node, "wind"), child(node, "sensor_noise"), child(node, "servos"),
-                              child(node, "computer"), std::filesystem::path(scenario.source).parent_path());
-  scenario.model_options = read_model(child(node, "model"), scenario.model_preset);
+  const Settings simulation(child(root, "simulation"), "simulation");
+  scenario.simulation =
+      read_simulation_block(simulation, std::filesystem::path(scenario.source).parent_path(), {"model"});
+  scenario.model_options = read_model(child(simulation.node(), "model"), scenario.model_preset);
   check_flight_length(Settings(root), simulation, scenario);
 }
 
@@ -340,7 +272,7 @@ Scenario Scenario::at_speed(double speed_scale) const {
   Scenario faster = *this;
   faster.trajectory = trajectory.time_scaled(speed_scale);
   faster.duration = duration / speed_scale;
-  if (simulation_duration) faster.simulation_duration = *simulation_duration / speed_scale;
+  if (simulation.duration) faster.simulation.duration = *simulation.duration / speed_scale;
   return faster;
 }
 
@@ -353,26 +285,16 @@ Scenario Scenario::turned(double course) const {
 sim::SimulationSettings Scenario::simulation_settings() const { return simulation_settings(sim::SimulationSettings()); }
 
 sim::SimulationSettings Scenario::simulation_settings(sim::SimulationSettings base) const {
-  base.duration = simulation_duration.value_or(duration);
-  if (dt) base.dt = *dt;
-  if (log_every) base.log_every = *log_every;
-  if (summary_only) base.keep_log = !*summary_only;
-  if (timing) base.measure_compute_time = *timing;
-  if (controller_period_steps) base.controller_period_steps = *controller_period_steps;
-  if (seed) base.seed = *seed;
+  base.duration = duration;
+  fly(simulation, base);
   // The paper has no actuator limits: its literal preset flies without them unless the file says.
-  base.actuator_limits.enabled = actuator_limits.value_or(model_preset != "paper" && base.actuator_limits.enabled);
-  if (anti_windup) base.actuator_limits.anti_windup = *anti_windup;
-  if (parameter_uncertainty) base.parameter_uncertainty = *parameter_uncertainty;
-  if (wind_gust) base.wind_gust.enabled = *wind_gust;
-  if (measurement_noise) base.noise.measurement = *measurement_noise;
-  if (measurement_noise_on) base.noise.measurement_on = *measurement_noise_on;
-  if (actuator_noise) base.noise.actuator = *actuator_noise;
-  if (wind_noise) base.noise.wind_component = *wind_noise;
-  if (induced_velocity_noise) base.noise.induced_velocity = *induced_velocity_noise;
-  if (!parameter_deviations.empty()) base.parameter_deviations = parameter_deviations;
-  beyond_paper.apply(base);
+  if (!simulation.actuator_limits && model_preset == "paper") base.actuator_limits.enabled = false;
   return base;
+}
+
+Scenario as_flown(const RunControls& controls, const Scenario& scenario) {
+  const Scenario faster = controls.speed_scale ? scenario.at_speed(*controls.speed_scale) : scenario;
+  return controls.course ? faster.turned(*controls.course) : faster;
 }
 
 Scenario parse_scenario(const std::string& text, const std::string& source) {

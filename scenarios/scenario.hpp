@@ -1,18 +1,15 @@
 #pragma once
 
-#include <cstdint>
 #include <filesystem>
-#include <optional>
 #include <string>
 
 #include <Eigen/Core>
 #include <yaml-cpp/yaml.h>
 
 #include "core/helicopter/model_options.hpp"
-#include "core/sim/noise.hpp"
-#include "core/sim/simulator.hpp"
-#include "scenarios/disturbance_blocks.hpp"
+#include "core/sim/simulation_settings.hpp"
 #include "scenarios/trajectory.hpp"
+#include "settings/run_controls.hpp"
 
 namespace thetad {
 
@@ -40,32 +37,14 @@ struct Scenario {
   heli::ModelOptions model_options;
   std::string model_preset = "resolved";  // the preset model_options started from
 
-  // Overrides of the simulation settings; unset keeps the base value. simulation.duration flies
-  // less (or, holding the last phase's end, more) than the phases' duration.
-  std::optional<double> simulation_duration;
-  std::optional<double> dt;
-  std::optional<int> log_every;
-  std::optional<bool> summary_only;
-  std::optional<bool> timing;
-  std::optional<int> controller_period_steps;
-  std::optional<std::uint64_t> seed;
-  std::optional<bool> actuator_limits;  // default: the base's; always off with the paper-literal preset
-  std::optional<bool> anti_windup;      // default: the base's (on)
-  std::optional<bool> parameter_uncertainty;
-  std::optional<bool> wind_gust;
-  std::optional<bool> measurement_noise;
-  std::optional<sim::MeasurementNoiseOn> measurement_noise_on;
-  std::optional<bool> actuator_noise;
-  std::optional<bool> wind_noise;              // Table 1 #26-28
-  std::optional<bool> induced_velocity_noise;  // Table 1 #29-30
-  // simulation.disturbances.parameter_deviations: Table 1's parameter deviations xi by name (absent
-  // names 0) instead of the draw; empty: drawn.
-  std::vector<double> parameter_deviations;
-  // `wind:`, `sensor_noise:`, `servos:` (docs/model.md §15): absent blocks keep the base's (off).
-  DisturbanceBlocks beyond_paper;
+  // What the file's `simulation:` says about the flight, as run controls (read row by row by the
+  // run settings' table, settings/run_settings.hpp); unset keeps the base value. Its duration
+  // (simulation.duration) flies less (or, holding the last phase's end, more) than the phases'.
+  // The actuator limits default to the base's, and to off with the paper-literal preset.
+  RunControls simulation;
 
   // This scenario with its trajectory flown `speed_scale` times faster (PhasedTrajectory::time_scaled):
-  // the same path in 1/s of the time, so duration and simulation_duration shrink by s too, and a
+  // the same path in 1/s of the time, so duration and simulation.duration shrink by s too, and a
   // flight still covers the whole path, hovers included. What is physics rather than task keeps
   // its time: the plant and controller steps, the wind (its onset too) and the noises. Throws
   // thetad::Error unless s is positive and finite.
@@ -81,6 +60,10 @@ struct Scenario {
   sim::SimulationSettings simulation_settings() const;
   sim::SimulationSettings simulation_settings(sim::SimulationSettings base) const;
 };
+
+// `scenario` as the controls fly it: at controls.speed_scale, turned by controls.course (itself
+// without either).
+Scenario as_flown(const RunControls& controls, const Scenario& scenario);
 
 // Reads a scenario file. Every problem throws thetad::Error with one line that names the file,
 // the 1-based line and column, the field and the reason

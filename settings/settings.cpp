@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <span>
 
 #include "core/sim/seed.hpp"
 #include "core/text_file.hpp"
@@ -30,7 +31,7 @@ std::string kind_of(const YAML::Node& node) {
   return "nothing";
 }
 
-std::string joined(std::initializer_list<std::string_view> names) {
+std::string joined(std::span<const std::string_view> names) {
   std::string result;
   for (const auto name : names) result += (result.empty() ? "" : ", ") + std::string(name);
   return result;
@@ -79,6 +80,10 @@ SettingsError Settings::error(const std::string& key, const std::string& reason)
 }
 
 void Settings::allow_only(std::initializer_list<std::string_view> allowed) const {
+  allow_only(std::span<const std::string_view>(allowed.begin(), allowed.size()));
+}
+
+void Settings::allow_only(std::span<const std::string_view> allowed) const {
   if (!node_.IsMap()) return;
   for (const auto& item : node_) {
     const std::string key = item.first.Scalar();

@@ -18,6 +18,7 @@
 #include <initializer_list>
 #include <limits>
 #include <memory>
+#include <span>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -81,6 +82,7 @@ class Settings {
 
   // Throws on the first key of the map that is not in `allowed`, naming it and listing `allowed`.
   void allow_only(std::initializer_list<std::string_view> allowed) const;
+  void allow_only(std::span<const std::string_view> allowed) const;
 
   bool has(const std::string& key) const;
 

@@ -1,6 +1,6 @@
 #pragma once
 
-#include "experiment/run_controls.hpp"
+#include "settings/run_controls.hpp"
 
 namespace thetad::testing {
 

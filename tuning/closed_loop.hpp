@@ -19,7 +19,7 @@
 #include "core/sim/simulator.hpp"
 #include "experiment/controller_spec.hpp"
 #include "experiment/flight.hpp"
-#include "experiment/run_controls.hpp"
+#include "settings/run_controls.hpp"
 #include "tuning/parameterization.hpp"
 #include "tuning/search.hpp"
 

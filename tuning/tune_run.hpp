@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "experiment/progress.hpp"
-#include "experiment/run_controls.hpp"
+#include "settings/run_controls.hpp"
 #include "tuning/tuning_report.hpp"
 
 namespace thetad::tuning {

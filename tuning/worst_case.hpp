@@ -19,7 +19,7 @@
 #include "core/sim/run_summary.hpp"
 #include "experiment/controller_spec.hpp"
 #include "experiment/provenance.hpp"
-#include "experiment/run_controls.hpp"
+#include "settings/run_controls.hpp"
 
 namespace thetad::tuning {
 

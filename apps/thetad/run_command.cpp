@@ -17,7 +17,7 @@
 #include "experiment/replay.hpp"
 #include "experiment/result_json.hpp"
 #include "experiment/run_files.hpp"
-#include "experiment/run_settings.hpp"
+#include "settings/run_settings.hpp"
 #include "experiment/json_file.hpp"
 
 namespace thetad::app {

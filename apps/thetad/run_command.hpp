@@ -8,7 +8,7 @@
 #include <CLI/CLI.hpp>
 
 #include "experiment/flight.hpp"
-#include "experiment/run_controls.hpp"
+#include "settings/run_controls.hpp"
 
 namespace thetad::app {
 
@@ -33,7 +33,7 @@ struct FlightOptions {
 // 2^64 - 1 are CLI11 validation errors naming the option, not wraps.
 std::uint64_t parse_seed(const std::string& text, const std::string& option = "--seed");
 
-// Adds --scenario, --settings, every run setting's own option (experiment/run_settings.hpp: --seed,
+// Adds --scenario, --settings, every run setting's own option (settings/run_settings.hpp: --seed,
 // --ideal, --duration, --dt, ...; those for run files, --log-every, --summary-only and --no-timing,
 // only for a command that writes runs), --set, --quiet and --out to `command`.
 void add_flight_options(CLI::App& command, FlightOptions& options, bool scenario_required = true,

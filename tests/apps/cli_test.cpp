@@ -9,7 +9,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "experiment/run_settings.hpp"
+#include "settings/run_settings.hpp"
 #include "tests/apps/run_thetad.hpp"
 #include "tests/scratch_directory.hpp"
 #include <nlohmann/json.hpp>
@@ -47,7 +47,7 @@ TEST_F(Cli, ListShowsTheRegisteredControllers) {
   EXPECT_THAT(output.out, HasSubstr("example-pid "));
 }
 
-// Every run setting with an option of its own (experiment/run_settings.hpp) is an option of the
+// Every run setting with an option of its own (settings/run_settings.hpp) is an option of the
 // commands that fly; those about run files only of the commands that write them.
 TEST_F(Cli, EveryRunSettingWithAnOptionIsOffered) {
   const Output run = thetad("run --help");

@@ -103,6 +103,15 @@ TEST(CertificatesFlight, AResultWithCertificatesReplays) {
   EXPECT_TRUE(again.differences.empty()) << again.differences.front();
 }
 
+// `law` on the nominal helicopter for 10 ms of the scenario, ideal.
+sim::RunResult fly_ten_samples(ControlLaw& law) {
+  const Scenario scenario = load_scenario(kScenario);
+  sim::SimulationSettings settings = sim::SimulationSettings::ideal();
+  settings.duration = 0.01;
+  return sim::simulate(law, scenario.trajectory, scenario.initial_state, settings, heli::Parameters::nominal(),
+                       scenario.model_options);
+}
+
 // A law whose values do not match its columns ends its run as failed, not with a shifted log.
 class Miscounting final : public ControlLaw {
  public:
@@ -120,12 +129,8 @@ class Miscounting final : public ControlLaw {
 };
 
 TEST(CertificatesFlight, ALawGivingTooFewValuesFails) {
-  const Scenario scenario = load_scenario(kScenario);
-  sim::SimulationSettings settings = sim::SimulationSettings::ideal();
-  settings.duration = 0.01;
   Miscounting law;
-  const sim::RunResult run = sim::simulate(law, scenario.trajectory, scenario.initial_state, settings,
-                                           heli::Parameters::nominal(), scenario.model_options);
+  const sim::RunResult run = fly_ten_samples(law);
   EXPECT_EQ(run.summary.status, sim::RunStatus::failed);
   EXPECT_THAT(run.summary.reason, HasSubstr("log_values gave 1 values for 2 log columns"));
 }
@@ -156,12 +161,8 @@ class PlainAndCertificate final : public ControlLaw {
 };
 
 TEST(CertificatesFlight, ALawsPlainColumnsAreLoggedAndOnlyItsCertificatesSummarized) {
-  const Scenario scenario = load_scenario(kScenario);
-  sim::SimulationSettings settings = sim::SimulationSettings::ideal();
-  settings.duration = 0.01;
   PlainAndCertificate law;
-  const sim::RunResult run = sim::simulate(law, scenario.trajectory, scenario.initial_state, settings,
-                                           heli::Parameters::nominal(), scenario.model_options);
+  const sim::RunResult run = fly_ten_samples(law);
   ASSERT_EQ(run.summary.status, sim::RunStatus::completed) << run.summary.reason;
   ASSERT_EQ(run.summary.certificates.size(), 1u);
   EXPECT_EQ(run.summary.certificates[0].certificate.column.name, "certificate");

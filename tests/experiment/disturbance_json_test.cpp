@@ -1,4 +1,4 @@
-#include "experiment/disturbance_json.hpp"
+#include "settings/disturbance_json.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,9 +1,10 @@
-// The run settings' table (experiment/run_settings.hpp) walked row by row: each row's example
+// The run settings' table (settings/run_settings.hpp) walked row by row: each row's example
 // changes a flight, the result records it and a replay flies it again; a scenario file says it
 // under the row's file key to the same effect; the factors are its rows; and a result of an
 // earlier format_version flies with the settings of its time.
-#include "experiment/run_settings.hpp"
+#include "settings/run_settings.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -109,6 +110,24 @@ TEST(RunSettings, EveryFileKeySaysInTheScenarioWhatTheControlSays) {
     const Flight from_file = Flight::from_text(with_example_under_file_key(setting), "settings-table.yaml", {});
     const Flight from_control = settings_table_flight(example_controls(setting));
     EXPECT_EQ(settings_json(from_file.settings()), settings_json(from_control.settings()));
+  }
+}
+
+// The scenario parser reads every file key of the table: a row reads its own, or its key lies in a
+// block that another row reads whole (the fields of simulation.wind: beyond_paper's).
+TEST(RunSettings, TheScenarioParserReadsEveryFileKey) {
+  std::vector<std::string> read_whole;
+  for (const RunSetting& setting : run_settings()) {
+    if (!setting.read) continue;
+    std::stringstream keys{std::string(setting.file_key)};
+    for (std::string key; std::getline(keys, key, ',');) read_whole.push_back(key.substr(key.find_first_not_of(' ')));
+  }
+  for (const RunSetting& setting : run_settings()) {
+    if (setting.file_key.empty() || setting.read) continue;
+    const std::string key(setting.file_key);
+    EXPECT_TRUE(std::any_of(read_whole.begin(), read_whole.end(),
+                            [&](const std::string& block) { return key.starts_with(block + "."); }))
+        << setting.name << ": " << key;
   }
 }
 

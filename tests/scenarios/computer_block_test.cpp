@@ -5,7 +5,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "scenarios/disturbance_blocks.hpp"
+#include "settings/disturbance_blocks.hpp"
 #include "scenarios/scenario.hpp"
 #include "tests/error_message.hpp"
 
@@ -46,9 +46,9 @@ TEST(ComputerBlock, StepTimesByLabelOrABenchFileResolvedNextToTheScenario) {
   EXPECT_THAT(error_message([&] { given.computer.step_time_of("lqr"); }), HasSubstr("theta-d, sdre"));
 
   const Scenario from_file = scenario_of("  computer: {latency: step-time, bench: ../b/bench.json, statistic: p99}\n");
-  ASSERT_TRUE(from_file.beyond_paper.step_time_file);
-  EXPECT_EQ(from_file.beyond_paper.step_time_file->file, std::filesystem::path("dir/../b/bench.json"));
-  EXPECT_EQ(from_file.beyond_paper.step_time_file->statistic, "p99");
+  ASSERT_TRUE(from_file.simulation.beyond_paper.step_time_file);
+  EXPECT_EQ(from_file.simulation.beyond_paper.step_time_file->file, std::filesystem::path("dir/../b/bench.json"));
+  EXPECT_EQ(from_file.simulation.beyond_paper.step_time_file->statistic, "p99");
 }
 
 TEST(ComputerBlock, MistakesAreRefusedNamingTheField) {

@@ -1,4 +1,4 @@
-#include "scenarios/disturbance_blocks.hpp"
+#include "settings/disturbance_blocks.hpp"
 
 #include <string>
 

@@ -68,7 +68,7 @@ TEST(Scenario, ScenarioOneIsTheSpecsTable) {
   EXPECT_LT(scenario.trajectory.position(12.1).y(), 0.0);  // first towards -y
   EXPECT_GT(scenario.trajectory.position(12.1).x(), 0.0);  // and +x
   EXPECT_EQ(scenario.trajectory.position(85.0), Eigen::Vector3d::Zero());
-  EXPECT_FALSE(scenario.seed.has_value());
+  EXPECT_FALSE(scenario.simulation.seed.has_value());
 }
 
 TEST(Scenario, ScenarioTwoIsTheSpecsTable) {

@@ -1,15 +1,19 @@
-#include "experiment/run_controls.hpp"
+#include "settings/run_controls.hpp"
 
 #include "core/error.hpp"
 #include "core/helicopter/state.hpp"
-#include "experiment/run_settings.hpp"
+#include "settings/run_settings.hpp"
 
 namespace thetad {
 
-void apply(const RunControls& controls, sim::SimulationSettings& settings) {
+void fly(const RunControls& controls, sim::SimulationSettings& settings) {
   for (const RunSetting& setting : run_settings()) {
     if (setting.fly) setting.fly(controls, settings);
   }
+}
+
+void apply(const RunControls& controls, sim::SimulationSettings& settings) {
+  fly(controls, settings);
   // Every override given, the whole checked together (e.g. the log of a long flight must fit).
   settings.validate();
 }
@@ -26,11 +30,6 @@ Eigen::VectorXd offset_initial_state(const RunControls& controls, const Eigen::V
     x.segment<3>(heli::kPhi) += *controls.initial_attitude_offset;
   }
   return x;
-}
-
-Scenario as_flown(const RunControls& controls, const Scenario& scenario) {
-  const Scenario faster = controls.speed_scale ? scenario.at_speed(*controls.speed_scale) : scenario;
-  return controls.course ? faster.turned(*controls.course) : faster;
 }
 
 }  // namespace thetad

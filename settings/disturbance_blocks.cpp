@@ -1,4 +1,4 @@
-#include "scenarios/disturbance_blocks.hpp"
+#include "settings/disturbance_blocks.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -157,20 +157,20 @@ void DisturbanceBlocks::apply(sim::SimulationSettings& settings) const {
   if (computer) settings.computer = *computer;
 }
 
-DisturbanceBlocks read_disturbance_blocks(const YAML::Node& wind_node, const YAML::Node& sensor_noise,
-                                          const YAML::Node& servos, const YAML::Node& computer,
-                                          const std::filesystem::path& folder) {
+DisturbanceBlocks read_disturbance_blocks(const Settings& simulation, const std::filesystem::path& folder) {
   DisturbanceBlocks blocks;
-  if (wind_node.IsDefined()) {
-    const Settings wind(wind_node, "simulation.wind");
+  const YAML::Node& node = simulation.node();
+  if (simulation.has("wind")) {
+    const Settings wind(node["wind"], "simulation.wind");
     wind.allow_only({"model", "intensity", "scale", "airspeed_floor", "sigma", "correlation_time", "gusts"});
     blocks.turbulence = read_turbulence(wind);
     blocks.discrete_gusts = read_gusts(wind);
   }
-  if (sensor_noise.IsDefined()) blocks.sensor_noise = read_sensor_noise(Settings(sensor_noise, "simulation.sensor_noise"));
-  if (servos.IsDefined()) blocks.servos = read_servos(Settings(servos, "simulation.servos"));
-  if (computer.IsDefined())
-    blocks.computer = read_computer(Settings(computer, "simulation.computer"), folder, blocks.step_time_file);
+  if (simulation.has("sensor_noise"))
+    blocks.sensor_noise = read_sensor_noise(Settings(node["sensor_noise"], "simulation.sensor_noise"));
+  if (simulation.has("servos")) blocks.servos = read_servos(Settings(node["servos"], "simulation.servos"));
+  if (simulation.has("computer"))
+    blocks.computer = read_computer(Settings(node["computer"], "simulation.computer"), folder, blocks.step_time_file);
   return blocks;
 }
 

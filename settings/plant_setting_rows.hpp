@@ -2,7 +2,7 @@
 
 #include <vector>
 
-#include "experiment/run_settings.hpp"
+#include "settings/run_settings.hpp"
 
 namespace thetad {
 

@@ -5,9 +5,8 @@
 #include <string>
 #include <vector>
 
-#include <yaml-cpp/yaml.h>
-
 #include "core/sim/simulation_settings.hpp"
+#include "settings/settings.hpp"
 
 namespace thetad {
 
@@ -36,10 +35,8 @@ struct DisturbanceBlocks {
   void apply(sim::SimulationSettings& settings) const;
 };
 
-// The four blocks' nodes (an undefined node for an absent block); `folder`: the scenario file's,
-// against which a bench file's relative name is resolved.
-DisturbanceBlocks read_disturbance_blocks(const YAML::Node& wind, const YAML::Node& sensor_noise,
-                                          const YAML::Node& servos, const YAML::Node& computer,
-                                          const std::filesystem::path& folder);
+// The four blocks of a scenario's `simulation` block (each absent one nullopt); `folder`: the
+// scenario file's, against which a bench file's relative name is resolved.
+DisturbanceBlocks read_disturbance_blocks(const Settings& simulation, const std::filesystem::path& folder);
 
 }  // namespace thetad

@@ -1,6 +1,6 @@
-// The plant's rows of the run settings' table (experiment/plant_setting_rows.hpp). Flight applies
+// The plant's rows of the run settings' table (settings/plant_setting_rows.hpp). Flight applies
 // them (Flight::plant_flight; the helicopter's scenarios refuse them).
-#include "experiment/plant_setting_rows.hpp"
+#include "settings/plant_setting_rows.hpp"
 
 #include <charconv>
 #include <cmath>

@@ -3,7 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/sim/simulation_settings.hpp"
-#include "scenarios/disturbance_blocks.hpp"
+#include "settings/disturbance_blocks.hpp"
 
 namespace thetad {
 

@@ -1,8 +1,9 @@
-// The rows of the run settings' table (experiment/run_settings.hpp).
-#include "experiment/run_settings.hpp"
+// The rows of the run settings' table (settings/run_settings.hpp).
+#include "settings/run_settings.hpp"
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <optional>
 #include <sstream>
@@ -12,8 +13,9 @@
 #include "core/fixed_string.hpp"
 #include "core/helicopter/uncertainty.hpp"
 #include "core/sim/seed.hpp"
-#include "experiment/disturbance_json.hpp"
-#include "experiment/plant_setting_rows.hpp"
+#include "settings/disturbance_json.hpp"
+#include "settings/plant_setting_rows.hpp"
+#include "settings/run_setting_kinds.hpp"
 
 namespace thetad {
 
@@ -31,19 +33,6 @@ std::string seconds(double value) {
   return text.str();
 }
 
-// A switch: 0 off, 1 on (a campaign value is a number, and anything between would be a typo). The
-// messages of these checks leave the setting's name to the caller, which knows how it was given.
-bool switch_value(double value) {
-  if (value != 0.0 && value != 1.0) throw Error("a switch: 0 (off) or 1 (on), got " + std::to_string(value));
-  return value == 1.0;
-}
-
-// A whole number (a count or a choice's position), as the int it stands for.
-int whole(double value) {
-  if (value != std::floor(value)) throw Error("takes whole numbers, got " + std::to_string(value));
-  return static_cast<int>(value);
-}
-
 // The initial offsets are vectors in RunControls; a campaign sweeps their axes one by one, the
 // attitude's in degrees (as people state angles), flown in radians.
 void offset_axis(std::optional<Eigen::Vector3d>& offset, int axis, double value) {
@@ -52,38 +41,6 @@ void offset_axis(std::optional<Eigen::Vector3d>& offset, int axis, double value)
 }
 
 Eigen::Vector3d vector3(const Json& entries) { return Eigen::Vector3d(entries.get<std::array<double, 3>>().data()); }
-
-// A disturbance's switch: the RunControls member `control` sets the field of the flight's
-// settings that `path` leads to (a member, or a block's member); `row` says the rest.
-template <std::optional<bool> RunControls::*control, auto... path>
-RunSetting switch_row(RunSetting row) {
-  row.value = Value::on_off;
-  row.apply = [](double v, RunControls& c) { c.*control = switch_value(v); };
-  row.fly = [](const RunControls& c, sim::SimulationSettings& s) {
-    if (c.*control) (s .* ... .* path) = *(c.*control);
-  };
-  row.replay = [](const Json& v, RunControls& c) { c.*control = v.get<bool>(); };
-  return row;
-}
-
-// A multiplier of a disturbance's strength, finite and >= 0: the RunControls member `control` sets
-// the field of the flight's settings that `path` leads to; `row` says the rest.
-template <FixedString name, std::optional<double> RunControls::*control, auto... path>
-RunSetting scale_row(RunSetting row) {
-  row.name = name.value;
-  row.value = Value::number;
-  row.min = 0.0;
-  row.apply = [](double v, RunControls& c) { c.*control = v; };
-  row.fly = [](const RunControls& c, sim::SimulationSettings& s) {
-    if (!(c.*control)) return;
-    const double value = *(c.*control);
-    if (!(value >= 0.0) || !std::isfinite(value))
-      throw Error(std::string(name.value) + " " + std::to_string(value) + ": must be finite and >= 0");
-    (s .* ... .* path) = value;
-  };
-  if (!row.result_key.empty()) row.replay = [](const Json& v, RunControls& c) { c.*control = v.get<double>(); };
-  return row;
-}
 
 // One row per run setting. The order is the order they act on the flight's settings (the ideal
 // switch before the disturbances it turns off, the scenario's disturbance blocks before the single
@@ -118,16 +75,23 @@ std::vector<RunSetting> table() {
        .fly = [](const RunControls& c, Settings& s) { if (c.seed) s.seed = *c.seed; },
        .result_key = "provenance.seed",
        .replay = [](const Json& v, RunControls& c) { c.seed = v.get<std::uint64_t>(); },
-       .file_key = "simulation.seed"},
+       .file_key = "simulation.seed",
+       .read = [](const FileField& f, RunControls& c) { if (f.block.has(f.key)) c.seed = f.block.seed(f.key, 1); }},
       {.name = "dt_s", .value = Value::number, .unit = "s",
        .description = "plant (RK4) step; must divide the controller period (1 ms)", .min = 0.0,
        .apply = [](double v, RunControls& c) { c.dt = v; }, .factor_column = 20, .earlier_name = "dt",
        .example = "0.0005", .option = "--dt", .option_form = Option::value,
        .fly = [](const RunControls& c, Settings& s) {
          if (!c.dt) return;
-         // The controller keeps sampling at the scenario's period with zero-order hold.
-         const double dt = *c.dt, period = s.controller_period();
+         const double dt = *c.dt;
          if (!(dt > 0.0) || !std::isfinite(dt)) throw Error("dt " + seconds(dt) + ": must be > 0");
+         // A file's pair: dt as given, and the next row sets the steps.
+         if (c.controller_period_steps) {
+           s.dt = dt;
+           return;
+         }
+         // The controller keeps sampling at the scenario's period with zero-order hold.
+         const double period = s.controller_period();
          const double steps = std::round(period / dt);
          if (steps < 1.0 || std::abs(steps * dt - period) > 1e-9 * period)
            throw Error("dt " + seconds(dt) + " does not divide the controller period " + seconds(period) +
@@ -138,13 +102,16 @@ std::vector<RunSetting> table() {
        },
        .record = [](const Settings& s, Json& j) { j["dt_s"] = s.dt; },
        .result_key = "settings.dt_s", .replay = [](const Json& v, RunControls& c) { c.dt = v.get<double>(); },
-       .file_key = "simulation.dt"},
+       .file_key = "simulation.dt", .read = read_dt},
       {.name = "controller_period_s", .unit = "s", .description = "T_c = dt · controller_period_steps (a scenario's)",
+       .fly = [](const RunControls& c, Settings& s) {
+         if (c.controller_period_steps) s.controller_period_steps = *c.controller_period_steps;
+       },
        .record = [](const Settings& s, Json& j) {
          j["controller_period_steps"] = s.controller_period_steps;
          j["controller_period_s"] = s.controller_period();
        },
-       .file_key = "simulation.controller_period_steps"},
+       .file_key = "simulation.controller_period_steps", .read = read_count<&RunControls::controller_period_steps, 1>},
       {.name = "log_every", .value = Value::whole, .description = "log every N-th controller sample (default 1)",
        .min = 1.0, .max = std::numeric_limits<int>::max(),
        .apply = [](double v, RunControls& c) { c.log_every = whole(v); },
@@ -156,7 +123,7 @@ std::vector<RunSetting> table() {
        },
        .record = [](const Settings& s, Json& j) { j["log_every"] = s.log_every; },
        .result_key = "settings.log_every", .replay = [](const Json& v, RunControls& c) { c.log_every = v.get<int>(); },
-       .file_key = "simulation.log_every"},
+       .file_key = "simulation.log_every", .read = read_count<&RunControls::log_every, 1>},
       {.name = "summary_only", .value = Value::on_off,
        .description = "write no log (CSV), only the result JSON (complete summary)",
        .apply = [](double v, RunControls& c) { c.summary_only = switch_value(v); },
@@ -165,7 +132,7 @@ std::vector<RunSetting> table() {
        .record = [](const Settings& s, Json& j) { j["summary_only"] = !s.keep_log; },
        .result_key = "settings.summary_only",
        .replay = [](const Json& v, RunControls& c) { c.summary_only = v.get<bool>(); },
-       .file_key = "simulation.summary_only"},
+       .file_key = "simulation.summary_only", .read = read_switch<&RunControls::summary_only>},
       {.name = "duration_s", .value = Value::number, .unit = "s",
        .description = "simulated seconds to fly (default: the scenario's; shorter: the flight stops there)", .min = 0.0,
        .max = Settings::kMaxDuration, .apply = [](double v, RunControls& c) { c.duration = v; }, .factor_column = 21,
@@ -178,7 +145,7 @@ std::vector<RunSetting> table() {
        },
        .record = [](const Settings& s, Json& j) { j["duration_s"] = s.duration; },
        .result_key = "settings.duration_s", .replay = [](const Json& v, RunControls& c) { c.duration = v.get<double>(); },
-       .file_key = "duration, simulation.duration"},
+       .file_key = "duration, simulation.duration", .read = read_duration},
       switch_row<&RunControls::parameter_uncertainty, &Settings::parameter_uncertainty>(
           {.name = "parameter_uncertainty", .description = "Table 1's parameters drawn (docs/model.md §9.1)",
            .example = "0",
@@ -205,7 +172,8 @@ std::vector<RunSetting> table() {
        },
        .result_key = "settings.parameter_deviations",
        .replay = [](const Json& v, RunControls& c) { c.parameter_deviations = v.get<std::vector<double>>(); },
-       .absent_until = RunSetting::kEveryVersion, .file_key = "simulation.disturbances.parameter_deviations"},
+       .absent_until = RunSetting::kEveryVersion, .file_key = "simulation.disturbances.parameter_deviations",
+       .read = read_parameter_deviations},
       switch_row<&RunControls::wind_gust, &Settings::wind_gust, &sim::WindGustSettings::enabled>(
           {.name = "wind_gust", .description = "the paper's wind: mean and gust (Table 1 #22-25)", .example = "0",
            .record = [](const Settings& s, Json& j) {
@@ -253,6 +221,14 @@ std::vector<RunSetting> table() {
            },
            .result_key = "settings.noise.measurement",
            .file_key = "simulation.disturbances.measurement_noise"}),
+      {.name = "measurement_noise_on",
+       .description = "what the sensors' noise is added to: feedback_signal (the default) or absolute_state "
+                      "(docs/model.md §9.3); recorded in the noise block",
+       .fly = [](const RunControls& c, Settings& s) {
+         if (c.measurement_noise_on) s.noise.measurement_on = *c.measurement_noise_on;
+       },
+       .file_key = "simulation.disturbances.measurement_noise_on",
+       .read = read_measurement_noise_on},
       switch_row<&RunControls::actuator_noise, &Settings::noise, &sim::NoiseSettings::actuator>(
           {.name = "actuator_noise", .description = "the actuators' noise (Table 1 #43-47)", .example = "0",
            .result_key = "settings.noise.actuator",
@@ -316,7 +292,8 @@ std::vector<RunSetting> table() {
        // the run flew without it, so its replay does too.
        .result_key = "settings",
        .replay = [](const Json& v, RunControls& c) { c.beyond_paper = read_beyond_paper(v); },
-       .file_key = "simulation.wind, simulation.sensor_noise, simulation.servos, simulation.computer"},
+       .file_key = "simulation.wind, simulation.sensor_noise, simulation.servos, simulation.computer",
+       .read = [](const FileField& f, RunControls& c) { c.beyond_paper = read_disturbance_blocks(f.block, f.folder); }},
       {.name = "turbulence_model", .value = Value::choice,
        .description = "the gust model on the paper's mean wind (docs/model.md §15): paper, dryden, gauss_markov",
        .min = 0.0, .max = 2.0, .choices = "paper dryden gauss_markov",
@@ -379,7 +356,7 @@ std::vector<RunSetting> table() {
        .fly = [](const RunControls& c, Settings& s) { if (c.timing) s.measure_compute_time = *c.timing; },
        .record = [](const Settings& s, Json& j) { j["timing"] = s.measure_compute_time; },
        .result_key = "settings.timing", .replay = [](const Json& v, RunControls& c) { c.timing = v.get<bool>(); },
-       .file_key = "simulation.timing"},
+       .file_key = "simulation.timing", .read = read_switch<&RunControls::timing>},
       // What acts on the scenario and its initial state (Flight), recorded in the provenance.
       {.name = "initial_offset_x_m", .value = Value::number, .unit = "m",
        .description = "added to the initial north position",

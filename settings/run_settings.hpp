@@ -1,6 +1,8 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
+#include <initializer_list>
 #include <limits>
 #include <string>
 #include <string_view>
@@ -9,17 +11,27 @@
 #include <nlohmann/json.hpp>
 
 #include "core/sim/simulation_settings.hpp"
-#include "experiment/run_controls.hpp"
+#include "settings/run_controls.hpp"
+#include "settings/settings.hpp"
 
 namespace thetad {
+
+// Where a row's field is in a scenario file, for its reader: the block that holds it (the last of
+// the row's file keys), the key in that block, and the file's folder (against which a file that the
+// field names is resolved).
+struct FileField {
+  const Settings& block;
+  std::string key;
+  std::filesystem::path folder;
+};
 
 // The run settings: every condition a front end may set about a flight (RunControls), and what a
 // result's "settings" records of the flight, described once. Each row says its name, where a
 // scenario file, the command line, a campaign and a result have it, its range, and how it moves
-// between them. The walkers below, apply(RunControls, SimulationSettings), the command line
-// (add_flight_options), the campaign factors (campaigns/factors.hpp) and Python's keywords read the
-// table; the scenario parser, below experiment/, reads the file keys itself, held to the table by
-// its test. docs/scenarios.md "Adding a run condition" says what a new row needs.
+// between them. The walkers below, apply(RunControls, SimulationSettings), the scenario parser
+// (scenarios/simulation_block.hpp), the command line (add_flight_options), the campaign factors
+// (campaigns/factors.hpp) and Python's keywords read the table. docs/scenarios.md "Adding a run
+// condition" says what a new row needs.
 struct RunSetting {
   // How a value is given (a campaign file, --set, the command line, Python).
   enum class Value {
@@ -80,8 +92,12 @@ struct RunSetting {
   int absent_until = 0;
   void (*before)(RunControls& controls) = nullptr;
 
-  // Where a scenario file says it (docs/scenarios.md); empty: only a run control.
+  // Where a scenario file says it (docs/scenarios.md), dotted, several keys separated by ", ";
+  // empty: only a run control. `read` takes it from the file into the file's RunControls (given the
+  // block of the last key, present or not); a row without one documents a field that another row's
+  // block reads (the fields of `simulation.wind`: beyond_paper's).
   std::string_view file_key = {};
+  void (*read)(const FileField& field, RunControls& controls) = nullptr;
 
   bool is_family() const { return apply_named != nullptr; }
   bool is_factor() const { return factor_column > 0 || is_family(); }
@@ -98,6 +114,13 @@ struct RunSetting {
 const std::vector<RunSetting>& run_settings();
 // The setting named `name` (or by its earlier name); nullptr when there is none.
 const RunSetting* find_run_setting(std::string_view name);
+
+// What a scenario file's `simulation` block says about its flight: every row's field read by the
+// row, from the block its file key names (`simulation` or `simulation.disturbances`). Those blocks
+// may hold the rows' fields and, in `simulation`, `scenario_fields` (what the scenario itself reads:
+// `model`); `folder` is the file's. Throws SettingsError naming the field and the reason.
+RunControls read_simulation_block(const Settings& simulation, const std::filesystem::path& folder,
+                                  std::initializer_list<std::string_view> scenario_fields);
 
 // A result's "settings": every row's record, in table order.
 nlohmann::ordered_json settings_json(const sim::SimulationSettings& settings);

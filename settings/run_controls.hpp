@@ -8,22 +8,27 @@
 
 #include <Eigen/Core>
 
-#include "core/sim/simulator.hpp"
-#include "scenarios/scenario.hpp"
+#include "core/sim/simulation_settings.hpp"
+#include "settings/disturbance_blocks.hpp"
 
 namespace thetad {
 
 // What a front end may change about a scenario's flight without editing its file (the command
-// line's --duration, --dt, ...). Unset keeps what the scenario says.
+// line's --duration, --dt, ...), and what a scenario file says about its flight (Scenario::
+// simulation): the members the run settings' table (settings/run_settings.hpp) sets. Unset keeps
+// what the scenario (or, for a file, thetad's default) says.
 struct RunControls {
   std::optional<double> duration;        // s, in (0, one simulated day]
   std::optional<double> dt;              // plant step (s); must divide the controller period
+  // With dt, the controller period in plant steps (a file's pair): dt is then taken as it is.
+  std::optional<int> controller_period_steps;
   std::optional<int> log_every;          // log every N-th controller sample
   std::optional<std::uint64_t> seed;
   bool ideal = false;                    // no parameter uncertainty, noise, wind, servo dynamics or limits
   // Each disturbance on its own (after `ideal`): replays and sweeps set them one by one.
   std::optional<bool> parameter_uncertainty, wind_gust, measurement_noise, actuator_noise, wind_noise,
       induced_velocity_noise;
+  std::optional<sim::MeasurementNoiseOn> measurement_noise_on;
   std::optional<bool> actuator_limits;   // servo magnitude and rate limits (sim::ActuatorLimits)
   std::optional<bool> anti_windup;       // conditional integration of the position integrals at the limits
   // Strengths of the disturbances (campaign sweeps): multipliers of the paper's setting.
@@ -61,18 +66,18 @@ struct RunControls {
   std::optional<bool> timing;            // false: no wall-clock figure anywhere (byte-identical reruns)
 };
 
-// `settings` with `controls` applied. The controller keeps sampling at the scenario's period with
-// zero-order hold, so a new dt must divide that period: otherwise thetad::Error names both. A scale
-// or onset out of range is an error naming it. (The initial offsets act on the initial state and
-// speed_scale and course on the scenario: Flight.)
+// `settings` with `controls` applied, then the whole checked (SimulationSettings::validate). The
+// controller keeps sampling at the scenario's period with zero-order hold, so a new dt must divide
+// that period: otherwise thetad::Error names both. A scale or onset out of range is an error naming
+// it. (The initial offsets act on the initial state and speed_scale and course on the scenario:
+// Flight.)
 void apply(const RunControls& controls, sim::SimulationSettings& settings);
+// The same without the final check: a scenario file's controls, which the file's reader checks
+// naming its fields.
+void fly(const RunControls& controls, sim::SimulationSettings& settings);
 
 // `initial_state` moved by controls.initial_offset and turned by controls.initial_attitude_offset
 // (unchanged without them); a non-finite offset is an error.
 Eigen::VectorXd offset_initial_state(const RunControls& controls, const Eigen::VectorXd& initial_state);
-
-// `scenario` as the controls fly it: at controls.speed_scale, turned by controls.course (itself
-// without either).
-Scenario as_flown(const RunControls& controls, const Scenario& scenario);
 
 }  // namespace thetad
