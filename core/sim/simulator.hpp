@@ -51,9 +51,9 @@ inline LogColumn step_time_column() { return {"in_flight_step_time", "ns"}; }
 // the servos in this period; metrics; log; then controller_period_steps RK4 steps of dt with the
 // applied input held (zero-order hold; the previous period's until a late command arrives, the
 // plant step it arrives in split there), each followed by check() and advance(). The reference's integral is
-// accumulated by the PositionIntegral rule. A check() or actuate() that fails, a non-finite command,
-// or a thetad::Error from the plant ends the run as diverged; whatever the controller throws, and a
-// PlantCodeError from the plant (its code failed, core/plant_code_error.hpp), end it as failed.
+// accumulated by the PositionIntegral rule. A check() or actuate() that fails, or a thetad::Error
+// from the plant ends the run as diverged; whatever the controller throws, a non-finite command, and
+// a PlantCodeError from the plant (its code failed, core/plant_code_error.hpp), end it as failed.
 // Throws thetad::Error for invalid settings, a log that would not fit in memory, or a wrongly sized
 // x0. `progress`, when given, is called with the simulated time every kProgressSamples controller
 // samples (progress displays).
