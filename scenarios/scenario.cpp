@@ -1,8 +1,6 @@
 #include "scenarios/scenario.hpp"
 
 #include <algorithm>
-#include <cmath>
-#include <limits>
 #include <sstream>
 
 #include <yaml-cpp/yaml.h>
