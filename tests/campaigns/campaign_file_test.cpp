@@ -1,9 +1,13 @@
 #include "campaigns/campaign.hpp"
 
+#include <filesystem>
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
 
 #include "core/error.hpp"
+#include "scenarios/scenario.hpp"
 
 namespace thetad {
 namespace {
@@ -204,11 +208,39 @@ TEST(CampaignFile, TheShippedCampaignsAreValid) {
   EXPECT_EQ(legs.run_count(), 4 * 4 * 24 * 5);
   EXPECT_EQ(load_campaign(fair / "legs-20.yaml").run_count(), 2 * 24 * 5);
   EXPECT_EQ(load_campaign(fair / "theta-d-ablation.yaml").run_count(), 2 * 10 * 10);
+  // The legs in turbulence, and the tuned weights on the same draws (paired with them).
+  const Campaign turbulent = load_campaign(fair / "legs-turbulent.yaml");
+  const Campaign tuned = load_campaign(fair / "legs-turbulent-tuned.yaml");
+  EXPECT_EQ(turbulent.run_count(), 4 * 4 * 24 * 5);
+  EXPECT_EQ(tuned.run_count(), 4 * 4 * 12 * 5);
+  EXPECT_EQ(tuned.cells, turbulent.cells);
+  EXPECT_EQ(tuned.base_seed, turbulent.base_seed);
+  EXPECT_EQ(tuned.draws, turbulent.draws);
+  EXPECT_EQ(tuned.scenarios, turbulent.scenarios);
+  EXPECT_EQ(tuned.controllers.front().label, "theta-d.tuned.none");
+  EXPECT_EQ(tuned.controllers.front().settings["feedforward"].as<std::string>(), "none");
   // The computer in the loop and the turbulence study (docs/robustness.md (e), (f)).
   const Campaign slowdown = load_campaign(folder / "computer" / "slowdown.yaml");
   EXPECT_EQ(slowdown.run_count(), 6 * 3 * 2);
   EXPECT_EQ(slowdown.controllers.back().label, "sdre-cold");
   EXPECT_EQ(load_campaign(folder / "robustness" / "turbulence.yaml").run_count(), 2 * 3 * 4 * 3);
+}
+
+// Every campaign file shipped reads, with its scenarios and its controllers' settings files; the
+// other files beside them are the scenarios they fly, and read as scenarios.
+TEST(CampaignFile, EveryShippedCampaignLoads) {
+  int campaigns = 0;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(THETAD_SOURCE_DIR "/scenarios/campaigns")) {
+    const std::string name = entry.path().filename().string();
+    if (entry.path().extension() != ".yaml" || name.find(".settings.") != std::string::npos) continue;
+    if (YAML::LoadFile(entry.path().string())["campaign"]) {
+      EXPECT_NO_THROW(load_campaign(entry.path())) << entry.path();
+      ++campaigns;
+    } else {
+      EXPECT_NO_THROW(load_scenario(entry.path())) << entry.path();
+    }
+  }
+  EXPECT_GE(campaigns, 17);
 }
 
 }  // namespace
